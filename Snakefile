@@ -1,0 +1,29 @@
+# Replication of Liu, Pi & Huang (2015), "Penetration performance of
+# double-ogive-nose projectiles". `snakemake -c2` rebuilds every figure and
+# table implemented so far; `snakemake -c2 figures/fig16.png` one figure.
+import json
+from penetration.config import validate
+
+configfile: "workflow/config.yaml"
+# Stop before any job runs if the config (file plus --config overrides) is invalid.
+validate(config, json.load(open("workflow/schemas/config.schema.json")), "workflow/config.yaml (with overrides)")
+
+SRC = "src/penetration/"
+TASK = "workflow/scripts/run_task.py"
+FIGURES = ["fig03", "fig04", "fig05", "fig06", "fig07", "fig16"]
+TABLES = ["table1", "table2", "table4"]
+
+
+include: "workflow/rules/geometry.smk"
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/reference.smk"
+
+
+rule all:
+    default_target: True
+    input:
+        expand("figures/{f}.png", f=FIGURES),
+        expand("figures/{f}.csv", f=FIGURES),
+        expand("figures/{t}.csv", t=TABLES),
+        "figures/diff.csv",
+        "figures/diff_summary.md",

@@ -1,0 +1,30 @@
+"""Shared drawing helpers: style, atomic PNG output, paper-value markers."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from ..tasks import atomic_path  # noqa: E402
+
+PAPER_STYLE = dict(color="black", linestyle="none", marker="x", markersize=8, mew=1.6)
+NOSE_COLORS = {"crh3": "tab:red", "crh5": "tab:blue", "crh45": "tab:blue", "double_ogive": "tab:green",
+               "cone": "tab:orange", "minimum_nstar": "tab:purple"}
+
+
+def figure(ncols=1, width=6.4, height=4.2):
+    plt.rcParams.update({"font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
+    fig, axes = plt.subplots(1, ncols, figsize=(width * ncols, height), squeeze=False)
+    return fig, axes[0]
+
+
+def save(fig, path, dpi):
+    tmp, commit = atomic_path(path)
+    fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format="png", metadata={"Software": None})
+    plt.close(fig)
+    commit()
+
+
+def color(name):
+    return NOSE_COLORS.get(name.removeprefix("fig4_"), "gray")

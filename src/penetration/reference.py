@@ -1,0 +1,250 @@
+"""Reference values transcribed from the paper, and the diff against ours.
+
+Each diff row compares one number the paper states with ours (status
+``reproduced`` or ``deviates``), checks the paper against its own arithmetic
+(``reproduced`` or ``paper-inconsistent``), or shows a number that rests on
+something the paper does not state (``not-derivable``). Tolerances are stored
+with the reference values, never in code.
+"""
+from __future__ import annotations
+
+import csv
+import itertools
+from dataclasses import dataclass
+
+UNITS = {"1": 1.0, "%": 0.01, "m": 1.0, "kg": 1.0, "m/s": 1.0, "1/s": 1.0, "kg/m3": 1.0,
+         "g/cm3": 1e3, "MPa": 1e6, "GPa": 1e9, "as printed": 1.0}
+COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
+STATUSES = ("reproduced", "deviates", "paper-inconsistent", "not-derivable")
+VELOCITIES = (500, 800, 1000, 1200)
+TABLE3_NOSES = ("double_ogive", "crh45", "crh3")
+
+
+@dataclass(frozen=True)
+class Ref:
+    id: str
+    item: str
+    quantity: str
+    case: str
+    value: float
+    unit: str
+    relation: str
+    tol: float
+    source: str
+    note: str
+
+    @property
+    def si(self) -> float:
+        return self.value * UNITS[self.unit]
+
+
+def load_reference(path) -> dict[str, Ref]:
+    """Read the reference CSV; checks units, relations and unique ids."""
+    refs = {}
+    with open(path, newline="") as fh:
+        for n, row in enumerate(csv.DictReader(fh), start=2):
+            if row["id"] in refs:
+                raise ValueError(f"{path} row {n}: duplicate id {row['id']}")
+            if row["unit"] not in UNITS:
+                raise ValueError(f"{path} row {n}: unit {row['unit']!r} not in {sorted(UNITS)}")
+            if row["relation"] not in ("eq", "le", "ge", "lt", "gt"):
+                raise ValueError(f"{path} row {n}: relation {row['relation']!r} not in eq, le, ge, lt, gt")
+            refs[row["id"]] = Ref(row["id"], row["item"], row["quantity"], row["case"], float(row["value"]),
+                                  row["unit"], row["relation"], float(row["tol"]), row["source"], row["note"])
+    return refs
+
+
+@dataclass(frozen=True)
+class Row:
+    item: str
+    quantity: str
+    case: str
+    paper: float
+    ours: float
+    rel_err: float
+    tol: float
+    status: str
+
+
+def _rel(paper, ours):
+    return abs(ours - paper) / abs(paper) if paper != 0 else abs(ours - paper)
+
+
+def holds(relation, paper, ours, tol):
+    """Whether ours satisfies the paper's statement ``ours <relation> paper``."""
+    if relation == "eq":
+        return _rel(paper, ours) <= tol
+    return {"le": ours <= paper, "ge": ours >= paper, "lt": ours < paper, "gt": ours > paper}[relation]
+
+
+def compare(ref: Ref, ours: float, case: str | None = None, quantity: str | None = None) -> Row:
+    """Our value (in the reference's units) against the paper's."""
+    ok = holds(ref.relation, ref.value, ours, ref.tol)
+    return Row(ref.item, quantity or ref.quantity, case or ref.case, ref.value, ours,
+               _rel(ref.value, ours), ref.tol, "reproduced" if ok else "deviates")
+
+
+def unstated(ref: Ref, ours: float, case: str | None = None) -> Row:
+    """A value that rests on an inference of data the paper leaves out."""
+    return Row(ref.item, ref.quantity, case or ref.case, ref.value, ours, _rel(ref.value, ours), ref.tol,
+               "not-derivable")
+
+
+def consistency(ref: Ref, recomputed: float, tol: float, case: str | None = None, quantity: str | None = None) -> Row:
+    """The paper's number against its own arithmetic from other stated numbers."""
+    err = _rel(ref.value, recomputed)
+    return Row(ref.item, quantity or ref.quantity, case or ref.case, ref.value, recomputed, err, tol,
+               "reproduced" if err <= tol else "paper-inconsistent")
+
+
+def _decimals(x: float) -> int:
+    s = repr(float(x)).rstrip("0")
+    return len(s.split(".")[1]) if "." in s else 0
+
+
+def printed_interval(fn, refs):
+    """Range of fn over the rounding intervals of the referenced values.
+
+    Each input is known to +-half a unit of its last printed digit (three
+    decimals for Table 3's DOPs); the range of fn over those corners bounds
+    what the paper's own arithmetic can give.
+    """
+    halves = [0.5 * 10.0 ** -max(_decimals(r.value), 3) for r in refs]
+    vals = [fn(*[r.value + s * h for r, s, h in zip(refs, signs, halves)])
+            for signs in itertools.product((-1, 1), repeat=len(refs))]
+    return min(vals), max(vals)
+
+
+def arithmetic_check(ref: Ref, fn, inputs, case=None, quantity=None) -> Row:
+    """Paper cell against fn(inputs) with printing uncertainty on both sides."""
+    lo, hi = printed_interval(fn, inputs)
+    mid = 0.5 * (lo + hi)
+    slack = 0.5 * (hi - lo) + 0.5 * 10.0 ** -_decimals(ref.value)
+    tol = slack / abs(ref.value) if ref.value else slack
+    ok = lo - 0.5 * 10.0 ** -_decimals(ref.value) <= ref.value <= hi + 0.5 * 10.0 ** -_decimals(ref.value)
+    return Row(ref.item, quantity or ref.quantity, case or ref.case, ref.value, mid, _rel(ref.value, mid), tol,
+               "reproduced" if ok else "paper-inconsistent")
+
+
+# ------------------------------------------------------------- diff builders
+def table1_rows(refs):
+    """Table 1 against itself: bulk modulus, Young's modulus, reference rate."""
+    R = refs
+    ke = R["table1.pc"].si / R["table1.muc"].si
+    g = R["table1.K"].si
+    e_implied = 9 * ke * g / (3 * ke + g)
+    return [
+        consistency(R["table1.K"], ke / 1e9, 0.005, quantity="K (as elastic bulk modulus pc/muc)"),
+        consistency(R["table1.E"], e_implied / 1e9, 0.005, quantity="E (from Ke = pc/muc and G = K column)"),
+        consistency(R["table1.eps0_printed"], R["table1.eps0_text"].value, 0.0, quantity="eps0 (Table 1 vs text)"),
+    ]
+
+
+def table3_rows(refs):
+    """Table 3's derived columns against its own DOP columns."""
+    R, rows = refs, []
+    for v in VELOCITIES:
+        for nose in TABLE3_NOSES:
+            sim, calc = R[f"table3.sim.{v}.{nose}"], R[f"table3.calc.{v}.{nose}"]
+            cell = R[f"table3.reldev.{v}.{nose}"]
+            checks = [arithmetic_check(cell, lambda s, c: 100 * abs(s - c) / base(s, c), [sim, calc],
+                                       case=f"{v} {nose} (|sim-calc|/{name})")
+                      for name, base in (("sim", lambda s, c: s), ("calc", lambda s, c: c))]
+            good = [r for r in checks if r.status == "reproduced"]
+            rows.append(good[0] if good else min(checks, key=lambda r: r.rel_err))
+        for nose in ("double_ogive", "crh45"):
+            cell = R[f"table3.inc_crh3.{v}.{nose}"]
+            rows.append(arithmetic_check(cell, lambda a, b: 100 * (a / b - 1),
+                                         [R[f"table3.sim.{v}.{nose}"], R[f"table3.sim.{v}.crh3"]],
+                                         case=f"{v} {nose} (simulation column)"))
+        cell = R[f"table3.inc_equiv.{v}.double_ogive"]
+        rows.append(arithmetic_check(cell, lambda a, b: 100 * (a / b - 1),
+                                     [R[f"table3.sim.{v}.double_ogive"], R[f"table3.sim.{v}.crh45"]],
+                                     case=f"{v} double_ogive (simulation column)"))
+    gain = lambda a, b: a - b
+    rows.append(arithmetic_check(R["text.gain_1200_crh45"], gain,
+                                 [R["table3.sim.1200.double_ogive"], R["table3.sim.1200.crh45"]], case="1200 (Table 3 simulation)"))
+    rows.append(arithmetic_check(R["text.gain_1200_crh3"], gain,
+                                 [R["table3.sim.1200.double_ogive"], R["table3.sim.1200.crh3"]], case="1200 (Table 3 simulation)"))
+    for key, other in (("text.gain_pct_crh3", "inc_crh3"), ("text.gain_pct_crh45", "inc_equiv")):
+        ref = R[key]
+        least = min(R[f"table3.{other}.{v}.double_ogive"].value for v in VELOCITIES)
+        ok = holds(ref.relation, ref.value, least, ref.tol)
+        rows.append(Row(ref.item, ref.quantity, "smallest Table 3 increment (claim read as a lower bound)", ref.value,
+                        least, _rel(ref.value, least), ref.tol, "reproduced" if ok else "paper-inconsistent"))
+    return rows
+
+
+def table4_rows(refs, ours):
+    """Table 4, Fig 16 legend and the mass claims of the text.
+
+    ``ours`` maps 'nstar.<nose>' and 'mass.<nose>' to our values (SI) for
+    noses cone, minimum_nstar, double_ogive, crh45.
+    """
+    R, rows = refs, []
+    key = {"cone": "cone", "jones": "minimum_nstar", "double_ogive": "double_ogive", "crh45": "crh45"}
+    for short, nose in key.items():
+        inferred = nose == "double_ogive"
+        for item in ("table4", "fig16"):
+            ref = R[f"{item}.nstar.{short}"]
+            rows.append((unstated if inferred else compare)(ref, ours[f"nstar.{nose}"]))
+        ref = R[f"table4.mass.{short}"]
+        rows.append((unstated if inferred else compare)(ref, ours[f"mass.{nose}"]))
+        ratio = ours[f"mass.{nose}"] / ours["mass.crh45"]
+        ref = R[f"table4.ratio.{short}"]
+        rows.append((unstated if inferred else compare)(ref, ratio))
+        if short != "crh45":
+            rows.append(arithmetic_check(ref, lambda m, m45: m / m45, [R[f"table4.mass.{short}"], R["table4.mass.crh45"]],
+                                         case=f"{nose} (paper masses)"))
+    rows.append(consistency(R["table4.nstar.cone"], R["fig16.nstar.cone"].value, R["table4.nstar.cone"].tol,
+                            case="cone (Table 4 vs Fig 16 legend)"))
+    for ref_id, other in (("text.mass_gain_cone", "cone"), ("text.mass_gain_jones", "jones")):
+        rows.append(arithmetic_check(R[ref_id], lambda m, mo: 100 * (m / mo - 1),
+                                     [R["table4.mass.double_ogive"], R[f"table4.mass.{other}"]], case="paper masses"))
+        rows.append(unstated(R[ref_id], 100 * (ours["mass.double_ogive"] / ours[f"mass.{key[other]}"] - 1),
+                             case="our masses (inferred double ogive)"))
+    return rows
+
+
+def fig03_rows(refs, bands):
+    """Fig 3 statements against the CRH 3 shape rate under each k convention.
+
+    ``bands`` maps convention -> dict(lo, hi, peak_x, peak_k), and
+    'adopted' names the convention used downstream.
+    """
+    R, adopted = refs, bands["adopted"]
+    b = bands[adopted]
+    rows = [compare(R["fig03.k_peak_x"], b["peak_x"]),
+            compare(R["fig03.middle_max"], b["hi"] - b["lo"], case=f"crh3 (k as {adopted})"),
+            compare(R["fig03.k_axis_max"], b["peak_k"], case=f"crh3 (k as {adopted})", quantity="k_peak <= axis max"),
+            compare(R["fig03.nstar_axis_max"], bands["nstar_crh3"], quantity="N* of CRH 3 <= axis max")]
+    ref, peak = R["fig03.k_axis_max"], bands["dN/d(x/b)"]["peak_k"]
+    rows.append(Row(ref.item, "k_peak <= axis max", "crh3 (k as labelled: dN*/d(x/b))", ref.value, peak,
+                    _rel(ref.value, peak), 0.0, "reproduced" if peak <= ref.value else "paper-inconsistent"))
+    return rows
+
+
+def fig05_rows(refs, ours):
+    """Fig 5 claim: at the CRH 5 length the double ogive has the smallest N*."""
+    R = refs
+    return [compare(R["fig05.do_below_crh5"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh5"]),
+            compare(R["fig05.do_below_crh3"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh3"])]
+
+
+def summary(rows, findings, pending) -> str:
+    """Markdown summary: counts per status, worst deviations, findings."""
+    lines = ["# Reproduction diff", "", "| status | rows |", "|---|---|"]
+    for s in STATUSES:
+        lines.append(f"| {s} | {sum(r.status == s for r in rows)} |")
+    lines += ["", "## Largest relative errors among compared values", "",
+              "| item | quantity | case | paper | ours | rel_err | tol | status |", "|---|---|---|---|---|---|---|---|"]
+    worst = sorted((r for r in rows if r.status in ("reproduced", "deviates")), key=lambda r: -r.rel_err)[:10]
+    lines += [f"| {r.item} | {r.quantity} | {r.case} | {r.paper:.6g} | {r.ours:.6g} | {r.rel_err:.3g} | {r.tol:.3g} | {r.status} |"
+              for r in worst]
+    lines += ["", "## Where the paper contradicts itself (from the arithmetic)", ""]
+    lines += [f"- {r.item} {r.quantity} [{r.case}]: paper {r.paper:.6g}, its own numbers give {r.ours:.6g}"
+              for r in rows if r.status == "paper-inconsistent"]
+    lines += ["", "## Findings recorded by hand (workflow/reference/findings.csv)", ""]
+    lines += [f"- **{f['id']}** ({f['kind']}, {f['where']}): {f['what']}. Decision: {f['decision']}." for f in findings]
+    lines += ["", "## Reference values not compared yet (later stages)", "", ", ".join(pending) or "none", ""]
+    return "\n".join(lines)

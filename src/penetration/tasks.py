@@ -1,0 +1,275 @@
+"""File I/O for the pipeline: turns result files into objects and back.
+
+Every Snakemake rule calls exactly one function registered here with
+``@task``; physics modules never read or write files, figure modules only
+read results and draw. All writes are atomic (temporary file, then rename),
+so a failed job leaves no half-written output.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import inference, reference
+from .geometry import Cone, MinimumNstar, Ogive, make_nose
+from .nstar import cumulative_nstar, nstar, shape_rate
+
+TASKS = {}
+
+
+def task(fn):
+    """Register a pipeline task under its function name."""
+    TASKS[fn.__name__] = fn
+    return fn
+
+
+def run(name, inputs, outputs, params):
+    """Entry point used by workflow/scripts/run_task.py."""
+    from . import figures  # noqa: F401  (registers the figure tasks)
+    if name not in TASKS:
+        raise KeyError(f"no task named {name!r}; known: {sorted(TASKS)}")
+    return TASKS[name](inputs, outputs, params)
+
+
+# --------------------------------------------------------------- atomic I/O
+def atomic_path(path):
+    """Context-free helper: a temporary sibling path and a commit function."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=path.suffix)
+    os.close(fd)
+    return Path(tmp), lambda: os.replace(tmp, path)
+
+
+def write_text(path, text):
+    tmp, commit = atomic_path(path)
+    tmp.write_text(text)
+    commit()
+
+
+def write_csv(frame: pd.DataFrame, path):
+    tmp, commit = atomic_path(path)
+    frame.to_csv(tmp, index=False, float_format="%.12g", lineterminator="\n")
+    commit()
+
+
+def write_json(obj, path):
+    write_text(path, json.dumps(obj, indent=2, default=_jsonable) + "\n")
+
+
+def _jsonable(x):
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    if isinstance(x, np.bool_):
+        return bool(x)
+    raise TypeError(f"cannot serialise {type(x)}")
+
+
+def nose_record(nose) -> dict:
+    """Kind and parameters of a nose, enough to rebuild it with make_nose."""
+    return {"kind": nose.kind, "params": {f.name: getattr(nose, f.name) for f in dataclasses.fields(nose)}}
+
+
+def nose_from_record(rec):
+    return make_nose(rec["kind"], **rec["params"])
+
+
+def read_inference(path):
+    """An inference result file: the dict written by the infer_* tasks."""
+    data = json.loads(Path(path).read_text())
+    data["nose"] = nose_from_record(data["nose"])
+    return data
+
+
+def read_noses(path) -> dict:
+    """Name -> nose from the noses table written by ``geometry``."""
+    table = pd.read_csv(path)
+    return {r.name: make_nose(r.kind, **json.loads(r.params)) for r in table.itertuples()}
+
+
+# -------------------------------------------------------------------- tasks
+def _write_inference(result, out_json, out_family):
+    family = pd.DataFrame(result.pop("family"))
+    result["nose"] = nose_record(result["nose"])
+    result["family_summary"] = {c: [float(family[c].min()), float(family[c].max())]
+                                for c in ("nstar", "volume", "mass", "S1", "a1", "a2", "region2_length") if c in family}
+    write_csv(family, out_family)
+    write_json(result, out_json)
+
+
+@task
+def infer_fig4_design(inputs, outputs, params):
+    rule = inference.Fig4Rule(**params.cfg)
+    result = inference.infer_fig4(rule)
+    result["described"] = inference.describe(result["nose"])
+    _write_inference(result, outputs.json, outputs.family)
+
+
+@task
+def infer_table4_do1(inputs, outputs, params):
+    cfg, proj = params.cfg, params.projectile
+    refs = reference.load_reference(inputs.reference)
+    targets = {k: refs[cfg[k]] for k in ("nstar_target", "mass_target")}
+    rule = inference.Table4Rule(radius=proj["radius"], density=proj["density"], psi_base=cfg["psi_base"],
+                                psi_length=cfg["psi_length"], nstar_target=targets["nstar_target"].si,
+                                mass_target=targets["mass_target"].si, middle_fraction=cfg["middle_fraction"],
+                                family_points=cfg["family_points"])
+    result = inference.infer_table4(rule)
+    result["inference_inputs"] = {k: {"id": r.id, "value": r.value, "unit": r.unit, "source": r.source}
+                                  for k, r in targets.items()}
+    result["described"] = inference.describe(result["nose"], proj["density"])
+    _write_inference(result, outputs.json, outputs.family)
+
+
+def study_noses(fig4, do1, radius, psi_length):
+    """The noses every geometry figure and Table 4 draw on, by name."""
+    length = Ogive(psi_length, radius).length
+    return {
+        "fig4_crh3": Ogive(3.0, 1.0), "fig4_crh5": Ogive(5.0, 1.0), "fig4_double_ogive": fig4,
+        "cone": Cone(radius, length), "minimum_nstar": MinimumNstar(radius, length),
+        "double_ogive": do1, "crh45": Ogive(psi_length, radius), "crh3": Ogive(3.0, radius),
+    }
+
+
+@task
+def geometry(inputs, outputs, params):
+    """N*, sizes and cumulative N* curves of the study's noses; Fig 3 bands."""
+    noses = study_noses(read_inference(inputs.fig4)["nose"], read_inference(inputs.do1)["nose"],
+                        params.projectile["radius"], params.table4["psi_length"])
+    rows, curves = [], []
+    for name, nose in noses.items():
+        shape_only = name.startswith("fig4_")
+        rows.append({"name": name, "kind": nose.kind, "radius": nose.radius, "length": nose.length,
+                     "nstar": nstar(nose), "volume": nose.volume(),
+                     "mass": np.nan if shape_only else nose.mass(params.projectile["density"]),
+                     "params": json.dumps(nose_record(nose)["params"], sort_keys=True)})
+        x, y, cum = cumulative_nstar(nose, params.points)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            k = shape_rate(nose, x)
+        k[~np.isfinite(k)] = np.nan  # where y' is infinite (hemisphere tip)
+        curves.append(pd.DataFrame({"name": name, "x": x, "y": y, "nstar_cum": cum, "k": k}))
+    write_csv(pd.DataFrame(rows), outputs.noses)
+    write_csv(pd.concat(curves, ignore_index=True), outputs.curves)
+    crh3 = noses["fig4_crh3"]
+    bands = []
+    for conv in inference.K_CONVENTIONS:
+        lo, hi, px, pk = inference.k_band(crh3, params.fig4["threshold"], conv)
+        bands.append({"convention": conv, "adopted": conv == params.fig4["convention"], "peak_x_over_b": px,
+                      "peak_k": pk, "lo": lo, "hi": hi, "width": None if lo is None else hi - lo})
+    write_csv(pd.DataFrame(bands), outputs.bands)
+
+
+def _bands_dict(path, noses_table):
+    table = pd.read_csv(path)
+    out = {r.convention: {"lo": r.lo, "hi": r.hi, "peak_x": r.peak_x_over_b, "peak_k": r.peak_k}
+           for r in table.itertuples()}
+    out["adopted"] = table.loc[table.adopted, "convention"].iloc[0]
+    out["nstar_crh3"] = float(noses_table.set_index("name").loc["fig4_crh3", "nstar"])
+    return out
+
+
+class _Tracking(dict):
+    """Dict that remembers which keys were read (to list pending references)."""
+
+    def __init__(self, *a):
+        super().__init__(*a)
+        self.used = set()
+
+    def __getitem__(self, key):
+        self.used.add(key)
+        return super().__getitem__(key)
+
+
+@task
+def diff(inputs, outputs, params):
+    """figures/diff.csv and its human-readable summary."""
+    refs = _Tracking(reference.load_reference(inputs.reference))
+    table = pd.read_csv(inputs.noses)
+    by = table.set_index("name")
+    ours = {f"nstar.{n}": float(by.loc[n, "nstar"]) for n in by.index}
+    ours.update({f"mass.{n}": float(by.loc[n, "mass"]) for n in by.index})
+    rows = (reference.table1_rows(refs) + reference.table3_rows(refs) + reference.table4_rows(refs, ours)
+            + reference.fig03_rows(refs, _bands_dict(inputs.bands, table)) + reference.fig05_rows(refs, ours))
+    frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=reference.COLUMNS)
+    write_csv(frame, outputs.diff)
+    findings = pd.read_csv(inputs.findings).to_dict("records")
+    pending = sorted(set(refs) - refs.used)
+    write_text(outputs.summary, reference.summary(rows, findings, pending))
+
+
+# --------------------------------------------------------- reproduction check
+def _committed(path):
+    """Text of ``path`` at git HEAD, or None when not tracked or no git."""
+    import subprocess
+    try:
+        out = subprocess.run(["git", "show", f"HEAD:{path}"], capture_output=True, text=True, check=False)
+    except OSError:
+        return None
+    return out.stdout if out.returncode == 0 else None
+
+
+def frames_differ(new: pd.DataFrame, old: pd.DataFrame, rtol, atol):
+    """Reason why two CSV tables differ beyond tolerance, or None."""
+    if list(new.columns) != list(old.columns):
+        return f"columns changed: {list(old.columns)} -> {list(new.columns)}"
+    if len(new) != len(old):
+        return f"row count changed: {len(old)} -> {len(new)}"
+    for col in new.columns:
+        a, b = new[col], old[col]
+        if pd.api.types.is_numeric_dtype(a) and pd.api.types.is_numeric_dtype(b):
+            x, y = a.to_numpy(float), b.to_numpy(float)
+            bad = ~(np.isclose(x, y, rtol=rtol, atol=atol) | (np.isnan(x) & np.isnan(y)))
+            if bad.any():
+                i = int(np.argmax(bad))
+                return f"column {col} row {i + 2}: committed {y[i]!r}, now {x[i]!r}"
+        elif not a.astype(str).equals(b.astype(str)):
+            i = int(np.argmax((a.astype(str) != b.astype(str)).to_numpy()))
+            return f"column {col} row {i + 2}: committed {b.iloc[i]!r}, now {a.iloc[i]!r}"
+    return None
+
+
+def reproduction_problems(csv_paths, diff_path, rtol, atol):
+    """List of problems: drifted figure CSVs and lost 'reproduced' rows."""
+    import io
+    problems, compared = [], 0
+    for path in csv_paths:
+        text = _committed(path)
+        if text is None:
+            continue
+        compared += 1
+        why = frames_differ(pd.read_csv(path), pd.read_csv(io.StringIO(text)), rtol, atol)
+        if why:
+            problems.append(f"{path}: no longer matches the committed file: {why}")
+    old = _committed(diff_path)
+    if old is not None:
+        key = ["item", "quantity", "case"]
+        was = pd.read_csv(io.StringIO(old))
+        now = pd.read_csv(diff_path).set_index(key)["status"]
+        for r in was[was.status == "reproduced"].itertuples():
+            k = (r.item, r.quantity, r.case)
+            status = now.get(k, "missing")
+            if status != "reproduced":
+                problems.append(f"{diff_path}: {r.item} / {r.quantity} / {r.case} was reproduced, now {status}")
+    return problems, compared
+
+
+@task
+def reproduce_check(inputs, outputs, params):
+    """Fail when a committed figure CSV or a reproduced diff row has drifted."""
+    problems, compared = reproduction_problems(list(inputs.csvs), inputs.diff, params.rtol, params.atol)
+    report = [f"compared {compared} committed CSV files (rtol {params.rtol}, atol {params.atol})"]
+    if compared == 0:
+        report.append("warning: no committed copies found (not a git checkout?); only the current diff was checked")
+    now = pd.read_csv(inputs.diff)
+    report.append("diff status counts: " + ", ".join(f"{s} {int((now.status == s).sum())}" for s in reference.STATUSES))
+    report += problems
+    print("\n".join(report))
+    if problems:
+        raise SystemExit(f"reproduction check failed: {len(problems)} problem(s)")
+    write_text(outputs.report, "\n".join(report) + "\n")

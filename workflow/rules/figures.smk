@@ -1,0 +1,62 @@
+# One rule per figure or table of the paper, named after it.
+FIG_SRC = [SRC + "figures/common.py", SRC + "tasks.py", SRC + "reference.py"]
+
+
+rule fig03:
+    input: FIG_SRC, SRC + "figures/fig03.py", curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv", reference=config["reference"],
+    output: png="figures/fig03.png", csv="figures/fig03.csv",
+    params: dpi=config["figures"]["dpi"],
+    script: "../scripts/run_task.py"
+
+
+rule fig04:
+    input: FIG_SRC, SRC + "figures/fig04.py", curves="results/nstar/curves.csv", fig4="results/geometry/double_ogive_fig4.json",
+    output: png="figures/fig04.png", csv="figures/fig04.csv",
+    params: dpi=config["figures"]["dpi"],
+    script: "../scripts/run_task.py"
+
+
+rule fig05:
+    input: FIG_SRC, SRC + "figures/fig05.py", SRC + "figures/fig04.py", curves="results/nstar/curves.csv",
+    output: png="figures/fig05.png", csv="figures/fig05.csv",
+    params: dpi=config["figures"]["dpi"],
+    script: "../scripts/run_task.py"
+
+
+rule fig06:
+    input: FIG_SRC, SRC + "figures/fig06.py", do1="results/geometry/double_ogive_table4.json",
+    output: png="figures/fig06.png", csv="figures/fig06.csv",
+    params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
+    script: "../scripts/run_task.py"
+
+
+rule fig07:
+    input: FIG_SRC, SRC + "figures/fig07.py", noses="results/nstar/noses.csv",
+    output: png="figures/fig07.png", csv="figures/fig07.csv",
+    params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
+    script: "../scripts/run_task.py"
+
+
+rule fig16:
+    input: FIG_SRC, SRC + "figures/fig16.py", curves="results/nstar/curves.csv", noses="results/nstar/noses.csv", reference=config["reference"],
+    output: png="figures/fig16.png", csv="figures/fig16.csv",
+    params: dpi=config["figures"]["dpi"],
+    script: "../scripts/run_task.py"
+
+
+rule table1:
+    input: FIG_SRC, SRC + "figures/tables.py", reference=config["reference"],
+    output: csv="figures/table1.csv",
+    script: "../scripts/run_task.py"
+
+
+rule table2:
+    input: FIG_SRC, SRC + "figures/tables.py", reference=config["reference"],
+    output: csv="figures/table2.csv",
+    script: "../scripts/run_task.py"
+
+
+rule table4:
+    input: FIG_SRC, SRC + "figures/tables.py", noses="results/nstar/noses.csv", reference=config["reference"],
+    output: csv="figures/table4.csv",
+    script: "../scripts/run_task.py"

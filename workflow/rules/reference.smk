@@ -1,0 +1,28 @@
+# The diff of every reproduced number against the paper, and the check that
+# nothing drifted from the committed results.
+
+rule diff:
+    input:
+        SRC + "reference.py", SRC + "tasks.py",
+        reference=config["reference"],
+        findings=config["findings"],
+        noses="results/nstar/noses.csv",
+        bands="results/nstar/k_bands.csv",
+    output:
+        diff="figures/diff.csv",
+        summary="figures/diff_summary.md",
+    script:
+        "../scripts/run_task.py"
+
+
+rule reproduce_check:
+    input:
+        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES),
+        diff="figures/diff.csv",
+    output:
+        report="results/check/reproduce_check.txt",
+    params:
+        rtol=config["check"]["rtol"],
+        atol=config["check"]["atol"],
+    script:
+        "../scripts/run_task.py"
