@@ -40,7 +40,8 @@ class ParameterError(ValueError):
 
     def __init__(self, owner, name, value, allowed):
         self.owner, self.name, self.value, self.allowed = owner, name, value, allowed
-        super().__init__(f"{owner}.{name} = {value!r} is not allowed: {allowed}")
+        where = f"{owner}: {name}" if " " in str(owner) else f"{owner}.{name}"
+        super().__init__(f"{where} = {value!r} is not allowed: {allowed}")
 
 
 def _check(owner, name, value, ok, allowed):

@@ -29,14 +29,6 @@ def task(fn):
     return fn
 
 
-def run(name, inputs, outputs, params):
-    """Entry point used by workflow/scripts/run_task.py."""
-    from . import figures  # noqa: F401  (registers the figure tasks)
-    if name not in TASKS:
-        raise KeyError(f"no task named {name!r}; known: {sorted(TASKS)}")
-    return TASKS[name](inputs, outputs, params)
-
-
 # --------------------------------------------------------------- atomic I/O
 def atomic_path(path):
     """Context-free helper: a temporary sibling path and a commit function."""

@@ -1,4 +1,4 @@
 """Run the package task named after the calling Snakemake rule."""
-from penetration.tasks import run
+from penetration.pipeline import run
 
 run(snakemake.rule, snakemake.input, snakemake.output, snakemake.params)  # noqa: F821

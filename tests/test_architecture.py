@@ -1,0 +1,36 @@
+"""Stages import one way; physics modules do no I/O or plotting."""
+import ast
+from pathlib import Path
+
+import pytest
+
+PKG = Path(__file__).resolve().parents[1] / "src/penetration"
+ORDER = ["units", "geometry", "nstar", "inference", "reference", "tasks", "figures", "pipeline"]
+PHYSICS = ["geometry", "nstar", "inference"]
+
+
+def imports(module):
+    path = PKG / f"{module}.py"
+    files = [path] if path.exists() else sorted((PKG / module).glob("*.py"))
+    names = set()
+    for node in (n for f in files for n in ast.walk(ast.parse(f.read_text()))):
+        if isinstance(node, ast.ImportFrom) and node.level >= 1 and node.module:
+            names.add(node.module.split(".")[0])
+        elif isinstance(node, ast.ImportFrom) and node.level >= 1:
+            names.update(a.name for a in node.names)
+        elif isinstance(node, ast.Import):
+            names.update(a.name.split(".")[0] for a in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            names.add(node.module.split(".")[0])
+    return names
+
+
+@pytest.mark.parametrize("module", ORDER[:-1])
+def test_no_upstream_imports(module):
+    later = set(ORDER[ORDER.index(module) + 1:])
+    assert not (imports(module) & later), f"{module} imports a later stage"
+
+
+@pytest.mark.parametrize("module", PHYSICS)
+def test_physics_is_pure(module):
+    assert not (imports(module) & {"matplotlib", "pandas", "os", "json", "yaml"})

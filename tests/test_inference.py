@@ -1,0 +1,79 @@
+"""Inference rules: they meet their targets, report families, and fail clearly."""
+import math
+
+import numpy as np
+import pytest
+
+from penetration.geometry import Ogive
+from penetration.inference import (K_CONVENTIONS, Fig4Rule, InferenceError, Table4Rule, banded_double_ogive,
+                                   infer_fig4, infer_table4, k_band)
+from penetration.nstar import nstar
+
+
+@pytest.fixture(scope="module")
+def table4():
+    return infer_table4(Table4Rule(radius=0.07, density=7850.0, psi_base=3.0, psi_length=4.5,
+                                   nstar_target=0.0608, mass_target=16.44))
+
+
+def test_peak_position_is_convention_free():
+    peaks = {c: k_band(Ogive(3, 0.07), 1e9, c)[2] for c in K_CONVENTIONS}
+    assert max(peaks.values()) - min(peaks.values()) < 1e-9
+    assert peaks["dN/d(x/b)"] == pytest.approx(0.2083, abs=1e-4)
+
+
+def test_only_the_adopted_convention_fits_fig3b():
+    """Axis top 0.040 and a k > 0.027 band no wider than a third of the nose."""
+    fits = []
+    for c in K_CONVENTIONS:
+        lo, hi, _, peak = k_band(Ogive(3, 1.0), 0.027, c)
+        if lo is not None and peak <= 0.040 and hi - lo <= 1 / 3:
+            fits.append(c)
+    assert fits == ["integrand_no_factor2"]
+
+
+def test_band_ends_are_threshold_crossings():
+    nose = Ogive(3, 1.0)
+    lo, hi, _, _ = k_band(nose, 0.027, "integrand_no_factor2")
+    from penetration.inference import plotted_k
+    k = plotted_k(nose, np.array([lo, hi]) * nose.length, "integrand_no_factor2")
+    assert np.allclose(k, 0.027, atol=1e-12)
+
+
+def test_table4_meets_targets_and_length(table4):
+    nose = table4["nose"]
+    assert nstar(nose) == pytest.approx(0.0608, rel=1e-9)
+    assert nose.mass(7850.0) == pytest.approx(16.44, rel=1e-9)
+    assert nose.length == pytest.approx(Ogive(4.5, 0.07).length, rel=1e-12)
+    xC, xD = nose.joints
+    assert (xD - xC) / nose.length == pytest.approx(1 / 3, rel=1e-9)
+    assert table4["unique"]
+
+
+def test_table4_family_holds_targets(table4):
+    fam = table4["family"]
+    assert len(fam) >= 5
+    for m in fam:
+        assert m["nstar"] == pytest.approx(0.0608, rel=1e-7)
+        assert m["mass"] == pytest.approx(16.44, rel=1e-7)
+    assert np.ptp([m["region2_length"] for m in fam]) > 0.01
+
+
+def test_table4_infeasible_target_raises():
+    with pytest.raises(InferenceError):
+        infer_table4(Table4Rule(radius=0.07, density=7850.0, psi_base=3.0, psi_length=4.5,
+                                nstar_target=0.03, mass_target=16.44))
+
+
+def test_fig4_design_is_interior_minimum_below_ogives():
+    r = infer_fig4(Fig4Rule())
+    n = nstar(r["nose"])
+    family = [m["nstar"] for m in r["family"]]
+    assert n <= min(family) + 1e-12
+    assert n < nstar(Ogive(5, 1.0)) < nstar(Ogive(3, 1.0))
+    assert r["nose"].length == pytest.approx(Ogive(5, 1.0).length, rel=1e-12)
+
+
+def test_banded_construction_rejects_unreachable_tip():
+    with pytest.raises(InferenceError, match="tip"):
+        banded_double_ogive(1.0, 3.0, Ogive(5, 1.0).length, 0.088, 0.383, 0.2)

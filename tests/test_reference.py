@@ -1,0 +1,60 @@
+"""Reference data and the diff logic."""
+from pathlib import Path
+
+import pytest
+
+from penetration.reference import (COLUMNS, STATUSES, Ref, arithmetic_check, holds, load_reference, table1_rows,
+                                   table3_rows)
+
+ROOT = Path(__file__).resolve().parents[1]
+REF = ROOT / "workflow/reference/paper_values.csv"
+
+
+def ref(value, unit="%", tol=0.01, relation="eq"):
+    return Ref("x", "t", "q", "c", value, unit, relation, tol, "src", "")
+
+
+def test_reference_file_loads_with_provenance():
+    refs = load_reference(REF)
+    assert len(refs) > 100
+    assert all(r.source for r in refs.values())
+    assert refs["table1.pc"].si == pytest.approx(16e6)
+    assert refs["text.rho_sec22"].si == pytest.approx(2500.0)
+
+
+def test_duplicate_ids_rejected(tmp_path):
+    p = tmp_path / "r.csv"
+    p.write_text(REF.read_text().splitlines()[0] + "\n" + "a,t,q,c,1,m,eq,0,s,\n" * 2)
+    with pytest.raises(ValueError, match="duplicate"):
+        load_reference(p)
+
+
+def test_relations():
+    assert holds("eq", 1.0, 1.009, 0.01) and not holds("eq", 1.0, 1.02, 0.01)
+    assert holds("le", 0.04, 0.0368, 0) and not holds("le", 0.04, 0.244, 0)
+    assert holds("lt", 0.0, -1e-3, 0) and not holds("lt", 0.0, 0.0, 0)
+
+
+def test_arithmetic_check_accounts_for_printing():
+    # 2.454 vs 2.248: 8.394 % of 2.454; a printed 8.39 is consistent, 8.50 is not
+    a, b = ref(2.454, "m"), ref(2.248, "m")
+    assert arithmetic_check(ref(8.39), lambda s, c: 100 * (s - c) / s, [a, b]).status == "reproduced"
+    assert arithmetic_check(ref(8.50), lambda s, c: 100 * (s - c) / s, [a, b]).status == "paper-inconsistent"
+
+
+def test_known_contradictions_are_found():
+    refs = load_reference(REF)
+    rows = {(r.item, r.quantity, r.case): r.status for r in table1_rows(refs) + table3_rows(refs)}
+    assert rows[("table1", "K (as elastic bulk modulus pc/muc)", "concrete")] == "paper-inconsistent"
+    bad = [k for k, s in rows.items() if s == "paper-inconsistent" and k[0] == "table3"]
+    assert any("1000 crh45" in k[2] for k in bad) and any("800 crh45" in k[2] for k in bad)
+    assert sum(s == "reproduced" for k, s in rows.items() if k[0] == "table3") >= 20
+
+
+def test_committed_diff_has_the_contract():
+    import csv
+    with open(ROOT / "figures/diff.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert tuple(rows[0]) == COLUMNS
+    assert {r["status"] for r in rows} <= set(STATUSES)
+    assert {r["item"] for r in rows} <= {f"table{i}" for i in range(1, 5)} | {f"fig{i:02d}" for i in range(1, 17)} | {"text"}
