@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from penetration.geometry import Cone, Flat, NOSES, Ogive
+from penetration.geometry import NOSES, Cone, DoubleOgive, Flat, MinimumNstar, Ogive
 from penetration.nstar import cumulative_nstar, nstar, nstar_parts, shape_rate
 
 RTOL = 1e-10
@@ -87,3 +87,23 @@ def test_shape_rate_peak_of_crh3():
 def test_every_registered_kind_has_a_closed_form_case():
     covered = {"ogive", "cone", "flat", "double_ogive", "minimum_nstar", "table"}
     assert set(NOSES) <= covered
+
+
+@pytest.mark.parametrize("nose", [DoubleOgive(0.07, S1=0.8576, S2=0.42, a1=0.0397, a2=0.0638, alpha=0.245),
+                                  MinimumNstar(0.07, 0.2886)])
+def test_eq5_in_x_by_adaptive_quadrature(nose):
+    """Independent oracle: Eq 5 as written (integral over x of y y'^3/(1+y'^2)), by scipy quad
+    with y' from finite differences of y(x), plus the flat tip's (r0/a)^2."""
+    from scipy.integrate import quad
+    h = 1e-7 * nose.length
+
+    def integrand(x):
+        xs = np.array([x - h, x + h]).clip(0, nose.length)
+        yp = np.diff(nose.y(xs))[0] / (xs[1] - xs[0])
+        return float(nose.y(np.array([x]))[0]) * yp**3 / (1 + yp**2)
+
+    joints = [s.point(s.t0)[0] for s in nose.segments[1:]]
+    val = quad(integrand, 0, nose.length, points=joints, limit=400, epsabs=1e-13, epsrel=1e-11)[0]
+    flat = nose.segments[0].y1 ** 2 if nose.kind == "minimum_nstar" else 0.0
+    expected = 2 / nose.radius**2 * val + flat / nose.radius**2
+    assert nstar(nose) == pytest.approx(expected, rel=2e-6)

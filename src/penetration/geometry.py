@@ -49,8 +49,9 @@ def _check(owner, name, value, ok, allowed):
         raise ParameterError(owner, name, value, allowed)
 
 
-# Gauss-Legendre rule on [-1, 1]; segments are split into panels of this order.
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
+# Gauss-Legendre rules on [-1, 1]; each segment type names the order that is
+# exact (lines) or converged to round-off (arcs, Newton's curve) on its panels.
+_GL = {n: np.polynomial.legendre.leggauss(n) for n in (2, 24)}
 
 
 # ----------------------------------------------------------------- segments
@@ -64,6 +65,7 @@ class Line:
     t0 = 0.0
     t1 = 1.0
     panels = 1
+    order = 2  # the integrands along a line are polynomials of degree <= 3
 
     def point(self, t):
         t = np.asarray(t, float)
@@ -95,6 +97,7 @@ class Arc:
     phi0: float
     phi1: float
     panels = 2
+    order = 24
 
     @property
     def t0(self):
@@ -133,6 +136,7 @@ class NewtonCurve:
     p1: float
     shift: float
     panels = 4
+    order = 24
 
     @property
     def t0(self):
@@ -166,14 +170,62 @@ class NewtonCurve:
         return p
 
 
+@dataclass(frozen=True)
+class Polyline:
+    """Points joined by straight pieces; t in [0, n-1], piece i is t in [i, i+1]."""
+    xs: tuple
+    ys: tuple
+    order = 2
+
+    @property
+    def t0(self):
+        return 0.0
+
+    @property
+    def t1(self):
+        return float(len(self.xs) - 1)
+
+    @property
+    def panels(self):
+        return len(self.xs) - 1
+
+    def _piece(self, t):
+        return np.clip(np.floor(np.asarray(t, float)), 0, len(self.xs) - 2).astype(int)
+
+    def point(self, t):
+        t = np.asarray(t, float)
+        i = np.arange(len(self.xs))
+        return np.interp(t, i, self.xs), np.interp(t, i, self.ys)
+
+    def derivative(self, t):
+        i = self._piece(t)
+        xs, ys = np.asarray(self.xs), np.asarray(self.ys)
+        return xs[i + 1] - xs[i], ys[i + 1] - ys[i]
+
+    def angle(self, t):
+        dx, dy = self.derivative(t)
+        return np.arctan2(dy, dx)
+
+    def t_at_x(self, x):
+        return np.interp(np.asarray(x, float), self.xs, np.arange(len(self.xs), dtype=float))
+
+    def edges(self, ta, tb):
+        inner = np.arange(np.floor(ta) + 1, np.ceil(tb))
+        return np.concatenate(([ta], inner[(inner > ta) & (inner < tb)], [tb]))
+
+
 def gauss_panels(seg, ta=None, tb=None):
-    """Nodes t and weights w covering [ta, tb] of a segment (default: all of it)."""
+    """Nodes t and weights w covering [ta, tb] of a segment (default: all of it).
+
+    Panels never straddle a polyline's corners, so the rule stays exact there.
+    """
     ta = seg.t0 if ta is None else ta
     tb = seg.t1 if tb is None else tb
-    edges = np.linspace(ta, tb, seg.panels + 1)
+    edges = seg.edges(ta, tb) if hasattr(seg, "edges") else np.linspace(ta, tb, seg.panels + 1)
+    gx, gw = _GL[seg.order]
     half = 0.5 * np.diff(edges)[:, None]
     mid = 0.5 * (edges[1:] + edges[:-1])[:, None]
-    return (mid + half * _GL_X).ravel(), (half * _GL_W).ravel()
+    return (mid + half * gx).ravel(), (half * gw).ravel()
 
 
 # ------------------------------------------------------------- the protocol
@@ -493,9 +545,8 @@ class TabulatedNose(NoseShape):
     def segments(self):
         x = np.asarray(self.x, float) - self.x[0]
         y = np.asarray(self.y, float)
-        segs = [Line(x[i], y[i], x[i + 1], y[i + 1]) for i in range(x.size - 1)
-                if (x[i + 1], y[i + 1]) != (x[i], y[i])]
-        return _flat_tip(float(y[0])) + tuple(segs)
+        keep = np.concatenate(([True], (np.diff(x) != 0) | (np.diff(y) != 0)))  # drop repeated points
+        return _flat_tip(float(y[0])) + (Polyline(tuple(x[keep]), tuple(y[keep])),)
 
     @classmethod
     def from_csv(cls, path):

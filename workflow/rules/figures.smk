@@ -1,62 +1,71 @@
 # One rule per figure or table of the paper, named after it.
-FIG_SRC = [SRC + "figures/common.py", SRC + "tasks.py", SRC + "reference.py"]
+FIG_SRC = [f"{SRC}figures/common.py", f"{SRC}tasks.py", f"{SRC}reference.py"]
 
 
 rule fig03:
-    input: FIG_SRC, SRC + "figures/fig03.py", curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/fig03.py", curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv", reference=config["reference"],
     output: png="figures/fig03.png", csv="figures/fig03.csv",
     params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig03.log",
     script: "../scripts/run_task.py"
 
 
 rule fig04:
-    input: FIG_SRC, SRC + "figures/fig04.py", curves="results/nstar/curves.csv", fig4="results/geometry/double_ogive_fig4.json",
+    input: FIG_SRC, f"{SRC}figures/fig04.py", curves="results/nstar/curves.csv", fig4="results/geometry/double_ogive_fig4.json",
     output: png="figures/fig04.png", csv="figures/fig04.csv",
     params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig04.log",
     script: "../scripts/run_task.py"
 
 
 rule fig05:
-    input: FIG_SRC, SRC + "figures/fig05.py", SRC + "figures/fig04.py", curves="results/nstar/curves.csv",
+    input: FIG_SRC, f"{SRC}figures/fig05.py", f"{SRC}figures/fig04.py", curves="results/nstar/curves.csv",
     output: png="figures/fig05.png", csv="figures/fig05.csv",
     params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig05.log",
     script: "../scripts/run_task.py"
 
 
 rule fig06:
-    input: FIG_SRC, SRC + "figures/fig06.py", do1="results/geometry/double_ogive_table4.json",
+    input: FIG_SRC, f"{SRC}figures/fig06.py", do1="results/geometry/double_ogive_table4.json",
     output: png="figures/fig06.png", csv="figures/fig06.csv",
     params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
+    log: "results/logs/fig06.log",
     script: "../scripts/run_task.py"
 
 
 rule fig07:
-    input: FIG_SRC, SRC + "figures/fig07.py", noses="results/nstar/noses.csv",
+    input: FIG_SRC, f"{SRC}figures/fig07.py", noses="results/nstar/noses.csv",
     output: png="figures/fig07.png", csv="figures/fig07.csv",
     params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
+    log: "results/logs/fig07.log",
     script: "../scripts/run_task.py"
 
 
 rule fig16:
-    input: FIG_SRC, SRC + "figures/fig16.py", curves="results/nstar/curves.csv", noses="results/nstar/noses.csv", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/fig16.py", curves="results/nstar/curves.csv", noses="results/nstar/noses.csv", reference=config["reference"],
     output: png="figures/fig16.png", csv="figures/fig16.csv",
     params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig16.log",
     script: "../scripts/run_task.py"
 
 
 rule table1:
-    input: FIG_SRC, SRC + "figures/tables.py", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/tables.py", reference=config["reference"],
     output: csv="figures/table1.csv",
+    log: "results/logs/table1.log",
     script: "../scripts/run_task.py"
 
 
 rule table2:
-    input: FIG_SRC, SRC + "figures/tables.py", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/tables.py", reference=config["reference"],
     output: csv="figures/table2.csv",
+    log: "results/logs/table2.log",
     script: "../scripts/run_task.py"
 
 
 rule table4:
-    input: FIG_SRC, SRC + "figures/tables.py", noses="results/nstar/noses.csv", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/tables.py", noses="results/nstar/noses.csv", reference=config["reference"],
     output: csv="figures/table4.csv",
+    log: "results/logs/table4.log",
     script: "../scripts/run_task.py"

@@ -2,19 +2,21 @@
 
 rule infer_fig4_design:
     input:
-        SRC + "inference.py", SRC + "geometry.py", SRC + "nstar.py", SRC + "tasks.py",
+        f"{SRC}inference.py", f"{SRC}geometry.py", f"{SRC}nstar.py", f"{SRC}tasks.py",
     output:
         json="results/geometry/double_ogive_fig4.json",
         family="results/geometry/double_ogive_fig4_family.csv",
     params:
         cfg=config["fig4_design"],
+    log:
+        "results/logs/infer_fig4_design.log",
     script:
         "../scripts/run_task.py"
 
 
 rule infer_table4_do1:
     input:
-        SRC + "inference.py", SRC + "geometry.py", SRC + "nstar.py", SRC + "tasks.py",
+        f"{SRC}inference.py", f"{SRC}geometry.py", f"{SRC}nstar.py", f"{SRC}tasks.py",
         reference=config["reference"],
     output:
         json="results/geometry/double_ogive_table4.json",
@@ -22,13 +24,15 @@ rule infer_table4_do1:
     params:
         cfg=config["table4_do1"],
         projectile=config["projectile"],
+    log:
+        "results/logs/infer_table4_do1.log",
     script:
         "../scripts/run_task.py"
 
 
 rule geometry:
     input:
-        SRC + "geometry.py", SRC + "nstar.py", SRC + "inference.py", SRC + "tasks.py",
+        f"{SRC}geometry.py", f"{SRC}nstar.py", f"{SRC}inference.py", f"{SRC}tasks.py",
         fig4="results/geometry/double_ogive_fig4.json",
         do1="results/geometry/double_ogive_table4.json",
     output:
@@ -40,5 +44,7 @@ rule geometry:
         table4=config["table4"],
         fig4=config["fig4_design"],
         points=config["figures"]["points_per_segment"],
+    log:
+        "results/logs/geometry.log",
     script:
         "../scripts/run_task.py"

@@ -3,7 +3,7 @@
 
 rule diff:
     input:
-        SRC + "reference.py", SRC + "tasks.py",
+        f"{SRC}reference.py", f"{SRC}tasks.py",
         reference=config["reference"],
         findings=config["findings"],
         noses="results/nstar/noses.csv",
@@ -11,6 +11,8 @@ rule diff:
     output:
         diff="figures/diff.csv",
         summary="figures/diff_summary.md",
+    log:
+        "results/logs/diff.log",
     script:
         "../scripts/run_task.py"
 
@@ -24,5 +26,7 @@ rule reproduce_check:
     params:
         rtol=config["check"]["rtol"],
         atol=config["check"]["atol"],
+    log:
+        "results/logs/reproduce_check.log",
     script:
         "../scripts/run_task.py"

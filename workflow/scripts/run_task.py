@@ -1,4 +1,26 @@
-"""Run the package task named after the calling Snakemake rule."""
+"""Run the package task named after the calling Snakemake rule.
+
+Output goes both to the terminal and to the rule's log file.
+"""
+import contextlib
+import sys
+
 from penetration.pipeline import run
 
-run(snakemake.rule, snakemake.input, snakemake.output, snakemake.params)  # noqa: F821
+
+class Tee:
+    def __init__(self, *streams):
+        self.streams = streams
+
+    def write(self, text):
+        for s in self.streams:
+            s.write(text)
+
+    def flush(self):
+        for s in self.streams:
+            s.flush()
+
+
+with open(snakemake.log[0], "w") as log:  # noqa: F821
+    with contextlib.redirect_stdout(Tee(sys.stdout, log)), contextlib.redirect_stderr(Tee(sys.stderr, log)):
+        run(snakemake.rule, snakemake.input, snakemake.output, snakemake.params)  # noqa: F821
