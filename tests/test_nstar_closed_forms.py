@@ -84,9 +84,35 @@ def test_shape_rate_peak_of_crh3():
     assert x[np.argmax(shape_rate(nose, x))] / nose.length == pytest.approx(0.208, abs=5e-4)
 
 
-def test_every_registered_kind_has_a_closed_form_case():
-    covered = {"ogive", "cone", "flat", "double_ogive", "minimum_nstar", "table"}
-    assert set(NOSES) <= covered
+EXAMPLES = {
+    "ogive": lambda tmp: Ogive(3, 0.07, 0.005),
+    "cone": lambda tmp: Cone(0.07, 0.3, 0.01),
+    "flat": lambda tmp: Flat(0.07),
+    "double_ogive": lambda tmp: DoubleOgive(0.07, S1=0.5, S2=0.42, a1=0.03, a2=0.045),
+    "minimum_nstar": lambda tmp: MinimumNstar(0.07, 0.3),
+    "table": lambda tmp: _table(tmp),
+}
+
+
+def _table(tmp):
+    path = tmp / "nose.csv"
+    path.write_text("x,y\n0,0.01\n0.1,0.04\n0.3,0.07\n")
+    return NOSES["table"].from_keywords(path=str(path))
+
+
+def test_examples_cover_the_registry():
+    assert set(EXAMPLES) == set(NOSES)
+
+
+@pytest.mark.parametrize("kind", sorted(NOSES))
+def test_registered_kind_basic_properties(kind, tmp_path):
+    """Every registered nose: 0 < N* <= 1, parts add up, cumulative N* rises to N*, closes on the shank."""
+    nose = EXAMPLES[kind](tmp_path)
+    n = nstar(nose)
+    assert 0 < n <= 1
+    _, y, cum = cumulative_nstar(nose, 30)
+    assert np.all(np.diff(cum) >= -1e-15) and cum[-1] == pytest.approx(n, rel=1e-12)
+    assert y[-1] == pytest.approx(nose.radius, rel=1e-12)
 
 
 @pytest.mark.parametrize("nose", [DoubleOgive(0.07, S1=0.8576, S2=0.42, a1=0.0397, a2=0.0638, alpha=0.245),

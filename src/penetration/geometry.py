@@ -564,10 +564,10 @@ class TabulatedNose(NoseShape):
         return cls(x, y, str(path))
 
     @classmethod
-    def from_keywords(cls, path, **kw):
+    def from_keywords(cls, path=None, **kw):
         if kw:
             raise ParameterError("table", ",".join(kw), "unexpected", "only path=FILE.csv")
-        if not Path(path).is_file():
+        if path is None or not Path(path).is_file():
             raise ParameterError("table", "path", path, "an existing CSV file with columns x, y")
         return cls.from_csv(path)
 

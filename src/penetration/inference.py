@@ -201,8 +201,8 @@ class Table4Rule:
     family_points: int = 41
 
 
-def _solve_table4(rule, length, unknowns, extra):
-    """Multi-start least squares for the Table 4 targets; distinct roots."""
+def _table4_residual(rule, length, unknowns, extra):
+    """Residual function of the Table 4 targets (relative N*, mass) plus ``extra``."""
     def residual(p):
         xi_c, xi_d, a1 = unknowns(p)
         try:
@@ -225,9 +225,10 @@ def infer_table4(rule: Table4Rule):
     form a one-parameter family in xi_d, which is traced and returned.
     """
     length = Ogive(rule.psi_length, rule.radius).length
-    shift_frac = (length - Ogive(rule.psi_base, rule.radius).length) / Ogive(rule.psi_base, rule.radius).length
+    base_length = Ogive(rule.psi_base, rule.radius).length
+    shift_frac = (length - base_length) / base_length
     middle = lambda nose: (nose.joints[1] - nose.joints[0]) / length - rule.middle_fraction
-    res = _solve_table4(rule, length, lambda p: (p[0], p[1], p[2] * rule.radius), middle)
+    res = _table4_residual(rule, length, lambda p: (p[0], p[1], p[2] * rule.radius), middle)
     roots = []
     for xi_c in np.linspace(-shift_frac + 0.02, 0.8, 5):
         for xi_d in np.linspace(0.3, 0.97, 5):
@@ -276,7 +277,7 @@ def _trace_table4_family(rule, length, shift_frac, start, xi_d0):
         for xi_d in xi_d0 + direction * np.linspace(0.0, 0.12, rule.family_points // 2 + 1)[1:]:
             if not 0.0 < xi_d < 1.0:
                 break
-            res = _solve_table4(rule, length, lambda p, xd=xi_d: (p[0], xd, p[1] * rule.radius), lambda nose: 0.0)
+            res = _table4_residual(rule, length, lambda p, xd=xi_d: (p[0], xd, p[1] * rule.radius), lambda nose: 0.0)
             r = least_squares(lambda p: res(p)[:2], guess, bounds=([-shift_frac, 0.0], [xi_d, 1.0]),
                               xtol=1e-15, ftol=1e-15, gtol=1e-15)
             if np.max(np.abs(r.fun)) > 1e-8:
