@@ -5,8 +5,9 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
-ORDER = ["units", "geometry", "nstar", "inference", "reference", "tasks", "figures", "pipeline"]
-PHYSICS = ["geometry", "nstar", "inference"]
+ORDER = ["units", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "calibration", "reference",
+         "scenes", "tasks", "figures", "pipeline"]
+PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "calibration"]
 
 
 def imports(module):
@@ -34,3 +35,9 @@ def test_no_upstream_imports(module):
 @pytest.mark.parametrize("module", PHYSICS)
 def test_physics_is_pure(module):
     assert not (imports(module) & {"matplotlib", "pandas", "os", "json", "yaml"})
+
+
+def test_dop_and_simulation_levels_are_independent():
+    """The closed form and the trajectory engine check each other, so neither imports the other."""
+    assert "trajectory" not in imports("dop")
+    assert "dop" not in imports("trajectory")

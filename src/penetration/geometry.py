@@ -572,6 +572,20 @@ class TabulatedNose(NoseShape):
         return cls.from_csv(path)
 
 
+LENGTH_FIELDS = {"ogive": ("radius", "tip_radius"), "cone": ("radius", "length", "tip_radius"), "flat": ("radius",),
+                 "double_ogive": ("radius", "S1", "S2", "a1", "a2", "tip_length"),
+                 "minimum_nstar": ("radius", "length"), "table": ("x", "y")}
+
+
+def scaled(nose, factor: float):
+    """The same nose shape with every length multiplied by ``factor``."""
+    def mul(v):
+        if v is None:
+            return None
+        return tuple(factor * e for e in v) if isinstance(v, tuple) else factor * v
+    return dataclasses.replace(nose, **{f: mul(getattr(nose, f)) for f in LENGTH_FIELDS[nose.kind]})
+
+
 def make_nose(kind: str, **params):
     """Build a registered nose by kind name from keyword parameters."""
     if kind not in NOSES:

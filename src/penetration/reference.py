@@ -13,7 +13,7 @@ import itertools
 from dataclasses import dataclass
 
 UNITS = {"1": 1.0, "%": 0.01, "m": 1.0, "kg": 1.0, "m/s": 1.0, "1/s": 1.0, "kg/m3": 1.0,
-         "g/cm3": 1e3, "MPa": 1e6, "GPa": 1e9, "as printed": 1.0}
+         "g/cm3": 1e3, "MPa": 1e6, "GPa": 1e9, "ms": 1e-3, "as printed": 1.0}
 COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
 STATUSES = ("reproduced", "deviates", "paper-inconsistent", "not-derivable")
 VELOCITIES = (500, 800, 1000, 1200)
@@ -64,6 +64,12 @@ class Row:
     rel_err: float
     tol: float
     status: str
+
+    def __post_init__(self):
+        if any("," in t for t in (self.item, self.quantity, self.case)):
+            raise ValueError(f"diff labels may not contain commas: {self.quantity!r} / {self.case!r}")
+        if self.status not in STATUSES:
+            raise ValueError(f"unknown status {self.status!r}")
 
 
 def _rel(paper, ours):
@@ -248,3 +254,92 @@ def summary(rows, findings, pending) -> str:
     lines += [f"- **{f['id']}** ({f['kind']}, {f['where']}): {f['what']}. Decision: {f['decision']}." for f in findings]
     lines += ["", "## Reference values not compared yet (later stages)", "", ", ".join(pending) or "none", ""]
     return "\n".join(lines)
+
+
+def _row(ref, quantity, case, ours, status):
+    return Row(ref.item, quantity, case, ref.value, ours, _rel(ref.value, ours), ref.tol, status)
+
+
+def table3_model_rows(refs, table3, fit_rows):
+    """Table 3's calculated DOPs against ours; the text's 1200 m/s gains.
+
+    table3: rows with velocity_ms, nose, analytic_m (S calibrated on DO1),
+    analytic_stated_S_m; fit_rows: cells of the fit to this column.
+    """
+    R, rows = refs, []
+    for r in table3:
+        ref = R[f"table3.calc.{r['velocity_ms']}.{r['nose']}"]
+        rows.append(compare(ref, r["analytic_m"], case=f"{ref.case} (Eq 9; S calibrated on DO1)"))
+        rows.append(compare(ref, r["analytic_stated_S_m"], case=f"{ref.case} (Eq 9; S = 72 fc^-0.5)"))
+    for c in fit_rows:
+        ref = R[c["id"]]
+        rows.append(unstated(ref, c["depth"] * (1 + c["relative_residual"]), case=f"{ref.case} (S fitted to this column)"))
+    by = {(r["velocity_ms"], r["nose"]): r["analytic_m"] for r in table3}
+    for key, other in (("text.gain_1200_crh45", "crh45"), ("text.gain_1200_crh3", "crh3")):
+        rows.append(compare(R[key], by[(1200, "double_ogive")] - by[(1200, other)],
+                            case="1200 (ours: Eq 9 calibrated on DO1; paper's from simulation)"))
+    return rows
+
+
+def experiment_rows(refs, do1_stated, do1_calibrated_S):
+    """DO1 (Table 2): our DOP with the stated S, and the calibration that fits it."""
+    ref = refs["table2.dop"]
+    return [compare(ref, do1_stated, case="DO1 (trajectory; S = 72 fc^-0.5)"),
+            _row(ref, "dop", f"DO1 (S calibrated to it: S = {do1_calibrated_S:.4g})", ref.value, "not-derivable")]
+
+
+def ordering_rows(refs, sec22):
+    """Figs 8-9 statements: peak decelerations and depths of the three noses.
+
+    sec22: dict (nose, velocity) -> dict(peak, dop, duration) at the chosen diameter.
+    """
+    R, rows = refs, []
+    vel = sorted({v for _, v in sec22})
+    for ref_id, a, b, q in (("fig08.peak_do_below_crh3", "double_ogive", "crh3", "peak"),
+                            ("fig08.peak_do_below_crh5", "double_ogive", "crh5", "peak"),
+                            ("fig08.peak_crh3_above_crh5", "crh3", "crh5", "peak"),
+                            ("fig09.do_deepest_crh3", "double_ogive", "crh3", "dop"),
+                            ("fig09.do_deepest_crh5", "double_ogive", "crh5", "dop")):
+        ref = R[ref_id]
+        for v in vel:
+            diff = sec22[(a, v)][q] - sec22[(b, v)][q]
+            scale = sec22[(b, v)][q]
+            rows.append(_row(ref, ref.quantity + " (relative)", f"{v:.0f} m/s", diff / scale,
+                             "reproduced" if holds(ref.relation, 0.0, diff, 0.0) else "deviates"))
+    for v in vel:
+        ref = R[f"fig09.t_axis_max.{v:.0f}"]
+        longest = max(sec22[(n, w)]["duration"] for n, w in sec22 if w == v) * 1e3
+        rows.append(compare(ref, longest, case=f"{v:.0f} m/s: longest penetration time (ms)"))
+    return rows
+
+
+def fig01_rows(refs, shares):
+    """Fig 1 statements; shares: list of dicts fc, velocity, static_share, inertial_share."""
+    import collections
+    R = refs
+    by_fc = collections.defaultdict(dict)
+    for s in shares:
+        by_fc[s["fc"]][s["velocity"]] = s
+    fcs = sorted(by_fc)
+    grow_fc = min(by_fc[b][v]["static_share"] - by_fc[a][v]["static_share"]
+                  for a, b in zip(fcs, fcs[1:]) for v in by_fc[a] if v > 0)
+    grow_v = min(by_fc[f][w]["inertial_share"] - by_fc[f][v]["inertial_share"]
+                 for f in fcs for v, w in zip(sorted(by_fc[f]), sorted(by_fc[f])[1:]))
+    al = R["fig01.aluminium"]
+    return [_row(al, al.quantity, al.case, float("nan"), "not-derivable"),
+            _row(R["fig01.static_grows_with_fc"], "least increase of the static share between strengths",
+                 "v > 0", grow_fc, "reproduced" if grow_fc > 0 else "deviates"),
+            _row(R["fig01.inertial_grows_with_v"], "least increase of the inertial share between velocities",
+                 "all strengths", grow_v, "reproduced" if grow_v > 0 else "deviates")]
+
+
+def fig15_rows(refs, fig15, do1_pd_stated, do1_pd_calibrated):
+    """Fig 15: ordering at 1200 m/s and the DO1 experiment point."""
+    R = refs
+    at = {(r["nose"], r["velocity"]): r for r in fig15}
+    diff = at[("minimum_nstar", 1200.0)]["dop"] - at[("double_ogive", 1200.0)]["dop"]
+    ref = R["fig15.minimum_nstar_deepest"]
+    ex = R["fig15.do1_experiment"]
+    return [_row(ref, ref.quantity, ref.case, diff, "reproduced" if diff > 0 else "deviates"),
+            compare(ex, do1_pd_stated, case="DO1 835 m/s (ours; S = 72 fc^-0.5)"),
+            _row(ex, ex.quantity, "DO1 835 m/s (ours; S calibrated to it)", do1_pd_calibrated, "not-derivable")]

@@ -166,6 +166,26 @@ def _bands_dict(path, noses_table):
     return out
 
 
+def _model_rows(refs, inputs):
+    """Diff rows of the DOP stage: Table 3, DO1, Figs 1, 8, 9, 15."""
+    from .scenes import load_json
+    fit = load_json(inputs.fit_calc)
+    cal = load_json(inputs.cal_do1)
+    do1 = pd.read_csv(inputs.do1_scene).iloc[0]
+    sec = pd.read_csv(inputs.sec22)
+    sec = sec[sec.radius_case == "chosen"]
+    sec22 = {(r.nose, r.velocity): {"peak": r.peak_deceleration, "dop": r.trajectory_dop, "duration": r.duration}
+             for r in sec.itertuples()}
+    d_do1 = 2 * cal["data"]["radius"]
+    calibrated_pd = (cal["data"]["measured_depth"] + cal["residual_m"]) / d_do1
+    return (reference.table3_model_rows(refs, pd.read_csv(inputs.table3).to_dict("records"), fit["cells"])
+            + reference.experiment_rows(refs, do1.trajectory_dop, cal["S"])
+            + reference.ordering_rows(refs, sec22)
+            + reference.fig01_rows(refs, pd.read_csv(inputs.shares).to_dict("records"))
+            + reference.fig15_rows(refs, pd.read_csv(inputs.fig15).to_dict("records"), do1.trajectory_dop / d_do1,
+                                   calibrated_pd))
+
+
 class _Tracking(dict):
     """Dict that remembers which keys were read (to list pending references)."""
 
@@ -187,7 +207,8 @@ def diff(inputs, outputs, params):
     ours = {f"nstar.{n}": float(by.loc[n, "nstar"]) for n in by.index}
     ours.update({f"mass.{n}": float(by.loc[n, "mass"]) for n in by.index})
     rows = (reference.table1_rows(refs) + reference.table3_rows(refs) + reference.table4_rows(refs, ours)
-            + reference.fig03_rows(refs, _bands_dict(inputs.bands, table)) + reference.fig05_rows(refs, ours))
+            + reference.fig03_rows(refs, _bands_dict(inputs.bands, table)) + reference.fig05_rows(refs, ours)
+            + _model_rows(refs, inputs))
     frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=reference.COLUMNS)
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")
@@ -265,3 +286,155 @@ def reproduce_check(inputs, outputs, params):
     if problems:
         raise SystemExit(f"reproduction check failed: {len(problems)} problem(s)")
     write_text(outputs.report, "\n".join(report) + "\n")
+
+
+# ------------------------------------------------- DOP, calibration, scenes
+def _scene_inputs(inputs, placeholder_diameter=None):
+    """Result files a scene may refer to, read from the rule's named inputs."""
+    from .scenes import load_json
+    noses = {"table4_do1": read_inference(inputs.do1)["nose"], "fig4_design": read_inference(inputs.fig4)["nose"]}
+    cal = {k: load_json(getattr(inputs, f"cal_{k}")) for k in ("do1", "table3_calc") if hasattr(inputs, f"cal_{k}")}
+    diam = {"diameter_450kg": {"diameter": placeholder_diameter}} if placeholder_diameter else {}
+    if hasattr(inputs, "diameter"):
+        diam["diameter_450kg"] = load_json(inputs.diameter)
+    return noses, cal, diam
+
+
+def _resolved(path, schema, inputs, placeholder_diameter=None):
+    from .scenes import read_scene, resolve, scene_name
+    noses, cal, diam = _scene_inputs(inputs, placeholder_diameter)
+    return resolve(scene_name(path), read_scene(path, schema), noses, cal, diam)
+
+
+@task
+def calibrate_do1(inputs, outputs, params):
+    """S fitted so that Eq 9 gives the measured DO1 depth (Table 2)."""
+    from .calibration import calibrate_strength
+    refs = reference.load_reference(inputs.reference)
+    sc = _resolved(inputs.scene, inputs.schema, inputs)
+    nose = sc.noses["double_ogive"]
+    depth, vs = refs[params.depth].si, refs[params.velocity].si
+    fit = calibrate_strength(sc.mass, sc.radius, nstar(nose), sc.target.rho, sc.target.fc, vs, depth)
+    stated = float(inference_free_S(sc))
+    write_json({"calibration": "do1", "fitted_quantity": "S, static resistance factor (A of Eq 6; S fc is the static resistance)",
+                "data": {"mass": sc.mass, "radius": sc.radius, "nstar": nstar(nose), "rho": sc.target.rho,
+                         "fc": sc.target.fc, "vs": vs, "measured_depth": depth,
+                         "sources": [refs[params.depth].source, refs[params.velocity].source]},
+                "model": "Eq 9 (Forrestal crater + tunnel), nose inferred from Table 4",
+                "S_stated_li_chen": stated, "S_ratio_to_stated": fit["S"] / stated, **fit}, outputs.json)
+
+
+def inference_free_S(scene):
+    """S = 72 fc^-0.5 of the paper's text, for comparison with calibrations."""
+    from .resistance import strength_factor
+    return strength_factor(scene.target.fc, "li_chen")
+
+
+@task
+def calibrate_table3_calc(inputs, outputs, params):
+    """S fitted by least squares to Table 3's 12 calculated DOPs."""
+    from .calibration import fit_strength
+    refs = reference.load_reference(inputs.reference)
+    sc = _resolved(inputs.scene, inputs.schema, inputs)
+    cells = []
+    for v in reference.VELOCITIES:
+        for n in reference.TABLE3_NOSES:
+            ref = refs[f"table3.calc.{v}.{n}"]
+            cells.append({"velocity": v, "nose": n, "mass": sc.mass, "radius": sc.radius,
+                          "nstar": nstar(sc.noses[n]), "vs": float(v), "depth": ref.si, "id": ref.id})
+    fit = fit_strength(cells, sc.target.rho, sc.target.fc)
+    for c, r in zip(cells, fit["relative_residuals"]):
+        c["relative_residual"] = r
+    write_json({"calibration": "table3_calc", "fitted_quantity": "S (one value for all 12 cells)",
+                "model": "Eq 9", "cells": cells, **{k: v for k, v in fit.items() if k != "relative_residuals"}},
+               outputs.json)
+
+
+@task
+def infer_diameter_450kg(inputs, outputs, params):
+    """Diameter of the 450 kg projectiles from Fig 9's Pd/d axis ranges."""
+    from .calibration import infer_diameter
+    refs = reference.load_reference(inputs.reference)
+    sc = _resolved(inputs.scene, inputs.schema, inputs, placeholder_diameter=1.0)
+    n = nstar(sc.noses[params.nose])
+    axes = [(a["velocity"], refs[a["top"]].value - a["tick"], refs[a["top"]].value) for a in params.axes]
+    out = infer_diameter(sc.mass, n, sc.target, axes)
+    out.update(rule="Pd/d of the deepest nose lies in the top tick interval of each Fig 9 panel",
+               nose=params.nose, nstar=n, axes=[{"velocity": v, "lower": lo, "upper": hi} for v, lo, hi in axes],
+               model="Eq 9 with the scene's target (S from its stated law)")
+    write_json(out, outputs.json)
+
+
+def _dop_rows(sc, radius_case="chosen"):
+    from .dop import penetration_depth
+    rows = []
+    for name, nose in sc.noses.items():
+        n = nstar(nose)
+        d = penetration_depth(sc.mass, nose.radius, n, sc.target, sc.velocities)
+        rows += [{"scene": sc.name, "nose": name, "radius_case": radius_case, "radius": nose.radius, "nstar": n,
+                  "S": sc.target.S, "velocity": v, "dop": di, "dop_over_d": di / (2 * nose.radius)}
+                 for v, di in zip(sc.velocities, d)]
+    return rows
+
+
+def _histories(sc, radius_case, rtol):
+    from .trajectory import assemble, integrate
+    rows, finals = [], []
+    for name, nose in sc.noses.items():
+        n = nstar(nose)
+        for v in sc.velocities:
+            asm = assemble(sc.effects, nose, n, sc.mass, sc.target, v, sc.friction, sc.ramp_depth)
+            tr = integrate(asm, sc.mass, v, rtol=rtol)
+            rows.append(pd.DataFrame({"nose": name, "radius_case": radius_case, "velocity": v, "t": tr.t, "z": tr.z,
+                                      "v": tr.v, "deceleration": tr.deceleration}))
+            finals.append({"nose": name, "radius_case": radius_case, "velocity": v, "trajectory_dop": tr.depth,
+                           "duration": tr.duration, "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0,
+                           "peak_deceleration": float(tr.deceleration.max())})
+    return rows, finals
+
+
+@task
+def scene(inputs, outputs, params):
+    """DOP of every nose and velocity of a scene; histories at trajectory level."""
+    import dataclasses as dc
+    sc = _resolved(inputs.scene, inputs.schema, inputs)
+    variants = [("chosen", sc)]
+    if "radius" in sc.provenance:
+        from .scenes import load_json
+        lo, hi = load_json(inputs.diameter)["interval"]
+        variants += [(case, dc.replace(sc, radius=0.5 * d, noses={k: scaled_nose(n, 0.5 * d) for k, n in sc.noses.items()}))
+                     for case, d in (("interval_low", lo), ("interval_high", hi))]
+    rows, hist, finals = [], [], []
+    for case, s in variants:
+        rows += _dop_rows(s, case)
+        if sc.level == "trajectory":
+            h, f = _histories(s, case, params.rtol)
+            hist += h
+            finals += f
+    table = pd.DataFrame(rows)
+    if finals:
+        table = table.merge(pd.DataFrame(finals), on=["nose", "radius_case", "velocity"], how="left")
+    write_csv(table, outputs.dop)
+    write_csv(pd.concat(hist, ignore_index=True) if hist else pd.DataFrame(columns=["nose"]), outputs.histories)
+
+
+def scaled_nose(nose, radius):
+    from .geometry import scaled
+    return scaled(nose, radius / nose.radius)
+
+
+@task
+def resistance_shares(inputs, outputs, params):
+    """Static and inertial shares of Eq 7 against velocity (Fig 1b)."""
+    from .calibration import resistance_shares as shares
+    from .resistance import Target, strength_factor
+    cfg = params.cfg
+    n = nstar(Ogive(cfg["psi"], 1.0))
+    v = np.linspace(0.0, cfg["v_max"], 151)
+    rows = []
+    for fc in cfg["strengths"]:
+        tg = Target(cfg["rho"], fc, float(strength_factor(fc, cfg["law"])))
+        st, ine = shares(n, tg, v)
+        rows.append(pd.DataFrame({"fc": fc, "S": tg.S, "nstar": n, "velocity": v, "static_share": st,
+                                  "inertial_share": ine}))
+    write_csv(pd.concat(rows, ignore_index=True), outputs.csv)

@@ -69,3 +69,50 @@ rule table4:
     output: csv="figures/table4.csv",
     log: "results/logs/table4.log",
     script: "../scripts/run_task.py"
+
+
+rule resistance_shares:
+    input: f"{SRC}calibration.py", f"{SRC}resistance.py", f"{SRC}tasks.py",
+    output: csv="results/resistance/shares.csv",
+    params: cfg=config["fig01"],
+    log: "results/logs/resistance_shares.log",
+    script: "../scripts/run_task.py"
+
+
+rule fig01:
+    input: FIG_SRC, f"{SRC}figures/fig01.py", shares="results/resistance/shares.csv",
+    output: png="figures/fig01.png", csv="figures/fig01.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig01.log",
+    script: "../scripts/run_task.py"
+
+
+rule fig08:
+    input: FIG_SRC, f"{SRC}figures/fig08.py", histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv",
+    output: png="figures/fig08.png", csv="figures/fig08.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig08.log",
+    script: "../scripts/run_task.py"
+
+
+rule fig09:
+    input: FIG_SRC, f"{SRC}figures/fig08.py", histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", reference=config["reference"],
+    output: png="figures/fig09.png", csv="figures/fig09.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig09.log",
+    script: "../scripts/run_task.py"
+
+
+rule fig15:
+    input: FIG_SRC, f"{SRC}figures/fig15.py", dop="results/scenes/fig15.csv", reference=config["reference"],
+    output: png="figures/fig15.png", csv="figures/fig15.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig15.log",
+    script: "../scripts/run_task.py"
+
+
+rule table3:
+    input: FIG_SRC, f"{SRC}figures/tables.py", analytic="results/scenes/table3.csv", stated="results/scenes/table3_stated.csv", fit="results/calibration/table3_calc.json", reference=config["reference"],
+    output: csv="figures/table3.csv",
+    log: "results/logs/table3.log",
+    script: "../scripts/run_task.py"

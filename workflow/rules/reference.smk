@@ -8,6 +8,13 @@ rule diff:
         findings=config["findings"],
         noses="results/nstar/noses.csv",
         bands="results/nstar/k_bands.csv",
+        table3="figures/table3.csv",
+        fit_calc="results/calibration/table3_calc.json",
+        cal_do1="results/calibration/do1.json",
+        do1_scene="results/scenes/do1.csv",
+        sec22="results/scenes/sec22_450kg.csv",
+        shares="results/resistance/shares.csv",
+        fig15="results/scenes/fig15.csv",
     output:
         diff="figures/diff.csv",
         summary="figures/diff_summary.md",
