@@ -54,10 +54,10 @@ class Target:
     S: float
 
     def __post_init__(self):
-        for name, lo in (("rho", 0.0), ("fc", 0.0), ("S", 0.0)):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v > lo):
-                raise ParameterError("target", name, v, f"{name} > {lo}")
+        for name in ("rho", "fc", "S"):
+            v = np.asarray(getattr(self, name), float)
+            if not (np.all(np.isfinite(v)) and np.all(v > 0)):
+                raise ParameterError("target", name, getattr(self, name), f"finite {name} > 0 (SI units)")
 
     @property
     def R(self):
@@ -93,31 +93,39 @@ def crater_coefficient(mass, radius, nstar, target: Target, vs):
 class NoseSurface:
     """Quadrature of the nose surface for the differential-area force law (Eq 2).
 
-    For each node: axial position x, radius y, sin(beta) (normal velocity
-    factor, Eq 3) and the weights of the normal-stress term (dy, the
-    projected area 2 pi y dy) and of the friction term (2 pi y dx).
+    For each node: sin(beta) (normal velocity factor, Eq 3) and the weights
+    of the normal-stress term (the projected area 2 pi y dy) and of the
+    friction term (2 pi y dx). ``segments`` are kept to cut the surface at a
+    depth while the nose enters the target.
     """
-    x: np.ndarray
     sin_beta: np.ndarray
     w_normal: np.ndarray
     w_friction: np.ndarray
-    radius: float
+    segments: tuple
     length: float
+
+
+def _nodes(segments, depth=math.inf):
+    sb, wn, wf = [], [], []
+    for seg in segments:
+        x0, x1 = float(seg.point(seg.t0)[0]), float(seg.point(seg.t1)[0])
+        if x0 > depth or (x0 == depth and x1 > x0):
+            break
+        tb = seg.t1 if x1 <= depth else float(seg.t_at_x(depth))
+        t, w = gauss_panels(seg, seg.t0, tb)
+        _, y = seg.point(t)
+        xd, yd = seg.derivative(t)
+        sb.append(np.sin(seg.angle(t)))
+        wn.append(2 * math.pi * y * yd * w)
+        wf.append(2 * math.pi * y * xd * w)
+    if not sb:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    return np.concatenate(sb), np.concatenate(wn), np.concatenate(wf)
 
 
 def nose_surface(nose) -> NoseSurface:
     """Gauss nodes and weights over every segment of a nose profile."""
-    xs, sb, wn, wf = [], [], [], []
-    for seg in nose.segments:
-        t, w = gauss_panels(seg)
-        x, y = seg.point(t)
-        xd, yd = seg.derivative(t)
-        xs.append(np.broadcast_to(x, t.shape))
-        sb.append(np.sin(seg.angle(t)))
-        wn.append(2 * math.pi * y * yd * w)
-        wf.append(2 * math.pi * y * xd * w)
-    cat = np.concatenate
-    return NoseSurface(cat(xs), cat(sb), cat(wn), cat(wf), float(nose.radius), float(nose.length))
+    return NoseSurface(*_nodes(nose.segments), tuple(nose.segments), float(nose.length))
 
 
 def nose_force(surface: NoseSurface, v, sigma_n, mu=0.0, depth=None):
@@ -126,13 +134,12 @@ def nose_force(surface: NoseSurface, v, sigma_n, mu=0.0, depth=None):
     sigma_n(vn) is the normal stress at normal velocity vn = V sin(beta)
     (Eq 4 form S fc + rho vn^2, or a tabulated cavity-expansion law);
     ``depth`` limits the load to the part of the nose with x <= depth (the
-    nose entering the target). Scalar v.
+    nose entering the target), integrated exactly up to the cut. Scalar v.
     """
-    sig = sigma_n(v * surface.sin_beta)
-    w = surface.w_normal + mu * surface.w_friction
+    sb, wn, wf = surface.sin_beta, surface.w_normal, surface.w_friction
     if depth is not None and depth < surface.length:
-        w = np.where(surface.x <= depth, w, 0.0)
-    return float(np.dot(sig, w))
+        sb, wn, wf = _nodes(surface.segments, depth)
+    return float(np.dot(sigma_n(v * sb), wn + mu * wf))
 
 
 def forrestal_stress(target: Target):
