@@ -28,3 +28,6 @@ rule all:
         expand("figures/{t}.csv", t=TABLES),
         "figures/diff.csv",
         "figures/diff_summary.md",
+        "figures/validation.png",
+        "figures/validation.csv",
+        "figures/accuracy_trajectory.png",

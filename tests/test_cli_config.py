@@ -56,3 +56,26 @@ def test_config_errors_name_field(path, value, needle):
     with pytest.raises(ConfigError) as err:
         validate(cfg, json.loads(SCHEMA.read_text()), "config.yaml")
     assert needle in str(err.value) and "allowed" in str(err.value)
+
+
+def test_predict_reports_bad_rows_and_writes_good_ones(tmp_path):
+    shots = tmp_path / "shots.csv"
+    shots.write_text("shot_id,mass_kg,diameter_m,nose_shape,crh,target_density_kgm3,fc_MPa,velocity_ms,dop_m,extra\n"
+                     "A,0.9,0.0269,ogive,2,2370,32.4,800,0.958,keep\n"
+                     "B,-1,0.0269,ogive,2,2370,32.4,800,0.9,x\n"
+                     "C,0.9,0.0269,cone,2,2370,32.4,800,0.9,x\n"
+                     "D,0.9,0.0269,hemispherical,,2370,32.4,800,0.9,x\n")
+    out = tmp_path / "out.csv"
+    res = cli("predict", str(shots), "--model", "analytic", "--out", str(out))
+    assert res.returncode == 0
+    assert "row 3: mass_kg" in res.stderr and "row 4: nose_shape" in res.stderr
+    import csv
+    rows = list(csv.DictReader(open(out)))
+    assert [r["shot_id"] for r in rows] == ["A", "D"] and rows[0]["extra"] == "keep"
+    # independent check of row A: Eq 9 by hand with S = 72 fc^-0.5 and N* = (8*2-1)/(24*4)
+    import math
+    m, a, rho, fc, v = 0.9, 0.01345, 2370.0, 32.4e6, 800.0
+    S, n = 72 * 32.4**-0.5, 15 / 96
+    v1 = (m * v**2 - 4 * math.pi * a**3 * S * fc) / (m + 4 * math.pi * a**3 * n * rho)
+    p = m / (2 * math.pi * a**2 * rho * n) * math.log(1 + n * rho * v1 / (S * fc)) + 4 * a
+    assert float(rows[0]["dop_pred_m"]) == pytest.approx(p, rel=1e-5)

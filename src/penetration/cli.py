@@ -31,6 +31,12 @@ def _parser():
     n.add_argument("kind", help=f"one of {sorted(NOSES)}")
     n.add_argument("params", nargs="*", metavar="key=value", help="nose parameters in SI units")
     n.add_argument("--json", action="store_true", help="print one JSON object")
+    pr = sub.add_parser("predict", help="closed-form DOP (Eq 9) for a CSV of shots")
+    pr.add_argument("shots", help="CSV in the schema of experiments-dev.csv (other columns are passed through)")
+    pr.add_argument("--model", choices=["analytic"], default="analytic", help="model level (analytic: Eq 9)")
+    pr.add_argument("--strength-law", choices=["li_chen", "forrestal"], default="li_chen",
+                    help="published S(fc) relation (default li_chen: S = 72 fc^-0.5)")
+    pr.add_argument("--out", required=True, help="output CSV: the input rows that could be predicted, plus dop_pred_m")
     return p
 
 
@@ -44,8 +50,23 @@ def _keywords(pairs):
     return out
 
 
+def _predict(args) -> int:
+    from .tasks import predict_file
+    try:
+        n, problems = predict_file(args.shots, args.out, args.strength_law)
+    except (OSError, KeyError) as err:
+        print(f"error: cannot read shots file {args.shots}: {err}", file=sys.stderr)
+        return 2
+    for p in problems:
+        print(f"skipped {p}", file=sys.stderr)
+    print(f"predicted {n} shots, skipped {len(problems)}; wrote {args.out}", file=sys.stderr)
+    return 0 if n else 2
+
+
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
+    if args.command == "predict":
+        return _predict(args)
     try:
         nose = make_nose(args.kind, **_keywords(args.params))
         result = {"nstar": nstar(nose), "length": nose.length, "volume": nose.volume()}

@@ -438,3 +438,113 @@ def resistance_shares(inputs, outputs, params):
         rows.append(pd.DataFrame({"fc": fc, "S": tg.S, "nstar": n, "velocity": v, "static_share": st,
                                   "inertial_share": ine}))
     write_csv(pd.concat(rows, ignore_index=True), outputs.csv)
+
+
+# ----------------------------------------------------------------- predict
+SHOT_FIELDS = {"mass_kg": (0.0, 1e6), "diameter_m": (0.0, 10.0), "target_density_kgm3": (100.0, 2e4),
+               "fc_MPa": (0.5, 2000.0), "velocity_ms": (0.0, 1e4)}
+NOSE_SHAPES = ("ogive", "hemispherical", "flat")
+
+
+def shot_nstar(row):
+    """N* of a shot's nose from its nose_shape and crh columns."""
+    from .geometry import Flat
+    shape = row.get("nose_shape", "")
+    if shape not in NOSE_SHAPES:
+        raise ValueError(f"nose_shape = {shape!r} is not allowed: one of {list(NOSE_SHAPES)}")
+    if shape == "hemispherical":
+        return nstar(Ogive(0.5, 1.0))
+    if shape == "flat":
+        return nstar(Flat(1.0))
+    try:
+        crh = float(row.get("crh", ""))
+    except ValueError:
+        raise ValueError(f"crh = {row.get('crh')!r} is not allowed: a number >= 0.5 for an ogive") from None
+    if not crh >= 0.5:
+        raise ValueError(f"crh = {crh} is not allowed: >= 0.5 for an ogive")
+    return nstar(Ogive(crh, 1.0))
+
+
+def _shot_values(row):
+    out = {}
+    for name, (lo, hi) in SHOT_FIELDS.items():
+        try:
+            v = float(row.get(name, ""))
+        except ValueError:
+            raise ValueError(f"{name} = {row.get(name)!r} is not allowed: a number in ({lo}, {hi}]") from None
+        if not lo < v <= hi:
+            raise ValueError(f"{name} = {v} is not allowed: a number in ({lo}, {hi}]")
+        out[name] = v
+    return out
+
+
+def predict_rows(rows, law="li_chen"):
+    """Predicted DOP (Eq 9, S from a published S(fc) law) for shot rows.
+
+    Returns (rows with dop_pred_m added, list of 'row N: reason' for the rows skipped);
+    N counts the header as row 1, as a spreadsheet does.
+    """
+    from .dop import penetration_depth
+    from .resistance import Target, strength_factor
+    good, problems = [], []
+    for i, row in enumerate(rows, start=2):
+        try:
+            v = _shot_values(row)
+            n = shot_nstar(row)
+        except ValueError as err:
+            problems.append(f"row {i}: {err}")
+            continue
+        fc = v["fc_MPa"] * 1e6
+        tg = Target(v["target_density_kgm3"], fc, float(strength_factor(fc, law)))
+        dop = float(penetration_depth(v["mass_kg"], 0.5 * v["diameter_m"], n, tg, v["velocity_ms"]))
+        good.append({**row, "dop_pred_m": f"{dop:.6g}"})
+    return good, problems
+
+
+def predict_file(path, out, law="li_chen"):
+    """Read a shots CSV, write it back with dop_pred_m; returns the skipped-row messages."""
+    import csv
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(fh)
+        rows, fields = list(reader), list(reader.fieldnames or [])
+    good, problems = predict_rows(rows, law)
+    tmp, commit = atomic_path(out)
+    with open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=fields + ["dop_pred_m"], lineterminator="\n")
+        w.writeheader()
+        w.writerows(good)
+    commit()
+    return len(good), problems
+
+
+@task
+def validation_predictions(inputs, outputs, params):
+    n, problems = predict_file(inputs.shots, outputs.csv, params.law)
+    print(f"predicted {n} shots; skipped {len(problems)}")
+    for p in problems:
+        print(p)
+
+
+@task
+def trajectory_accuracy(inputs, outputs, params):
+    """Trajectory DOP error against Eq 9 and wall time, over tolerances and methods."""
+    import time
+    from .dop import penetration_depth
+    from .trajectory import assemble, integrate
+    sc = _resolved(inputs.scene, inputs.schema, inputs)
+    nose = sc.noses["double_ogive"]
+    n = nstar(nose)
+    vs = float(sc.velocities[0])
+    exact = float(penetration_depth(sc.mass, nose.radius, n, sc.target, vs))
+    rows = []
+    for method in params.methods:
+        for rtol in params.rtols:
+            times = []
+            for _ in range(params.repeat):
+                t0 = time.perf_counter()
+                tr = integrate(assemble(sc.effects, nose, n, sc.mass, sc.target, vs), sc.mass, vs, rtol=rtol,
+                               method=method)
+                times.append(time.perf_counter() - t0)
+            rows.append({"method": method, "rtol": rtol, "rel_error": abs(tr.depth - exact) / exact,
+                         "wall_time_s": float(np.median(times)), "rhs_evaluations": tr.evaluations})
+    write_csv(pd.DataFrame(rows), outputs.csv)

@@ -116,3 +116,35 @@ rule table3:
     output: csv="figures/table3.csv",
     log: "results/logs/table3.log",
     script: "../scripts/run_task.py"
+
+
+rule validation_predictions:
+    input: f"{SRC}tasks.py", f"{SRC}dop.py", f"{SRC}resistance.py", shots=config["validation"]["shots"],
+    output: csv="results/validation/predictions.csv",
+    params: law=config["validation"]["strength_law"],
+    log: "results/logs/validation_predictions.log",
+    script: "../scripts/run_task.py"
+
+
+rule validation:
+    input: FIG_SRC, f"{SRC}figures/validation.py", predictions="results/validation/predictions.csv",
+    output: png="figures/validation.png", csv="figures/validation.csv",
+    params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"],
+    log: "results/logs/validation.log",
+    script: "../scripts/run_task.py"
+
+
+rule trajectory_accuracy:
+    input: DOP_SRC, f"{SRC}trajectory.py", **GEOMETRY_RESULTS, cal_do1="results/calibration/do1.json", scene="workflow/scenes/do1.yaml", schema=SCENE_SCHEMA,
+    output: csv="results/bench/trajectory_accuracy.csv",
+    params: methods=["DOP853", "RK45"], rtols=[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11], repeat=5,
+    log: "results/logs/trajectory_accuracy.log",
+    script: "../scripts/run_task.py"
+
+
+rule accuracy_trajectory:
+    input: FIG_SRC, f"{SRC}figures/accuracy.py", csv="results/bench/trajectory_accuracy.csv",
+    output: png="figures/accuracy_trajectory.png", csv="figures/accuracy_trajectory.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/accuracy_trajectory.log",
+    script: "../scripts/run_task.py"

@@ -26,7 +26,7 @@ rule diff:
 
 rule reproduce_check:
     input:
-        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES),
+        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES + ["validation"]),
         diff="figures/diff.csv",
     output:
         report="results/check/reproduce_check.txt",
