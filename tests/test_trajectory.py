@@ -121,3 +121,18 @@ def test_friction_adds_the_axial_share():
     f0, f1 = nose_force(s, 500.0, sig), nose_force(s, 500.0, sig, mu=0.2)
     # for a cone dx = dy * b/a: friction adds mu * b/a of the normal term
     assert f1 / f0 == pytest.approx(1 + 0.2 * 0.3 / 0.07, rel=1e-12)
+
+
+@pytest.mark.parametrize("fc", [10e6, 200e6])
+@pytest.mark.parametrize("nose", [Ogive(0.5, 0.07), Flat(0.07), MinimumNstar(0.07, 0.29)], ids=lambda n: n.kind)
+def test_trajectory_monotone_in_velocity_for_hard_noses_and_strengths(fc, nose):
+    from penetration.resistance import strength_factor
+    tg = Target(2400.0, fc, float(strength_factor(fc)))
+    n = nstar(nose)
+    depths = []
+    for vs in (1.0, 50.0, 200.0, 600.0, 1200.0, 2000.0):
+        tr = integrate(assemble(FORRESTAL, nose, n, 81.1, tg, vs), 81.1, vs, rtol=1e-9)
+        assert np.isfinite(tr.depth)
+        assert tr.depth == pytest.approx(float(penetration_depth(81.1, 0.07, n, tg, vs)), rel=1e-6)
+        depths.append(tr.depth)
+    assert np.all(np.diff(depths) > 0)
