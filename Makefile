@@ -22,7 +22,7 @@ reproduce: install
 	$(BIN)/snakemake -c$(CORES)
 
 check: install
-	$(BIN)/snakemake -c$(CORES) --forcerun reproduce_check reproduce_check
+	$(BIN)/snakemake -c$(CORES) all reproduce_check --forcerun reproduce_check
 
 test: install
 	$(BIN)/python -m pytest
