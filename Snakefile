@@ -10,7 +10,7 @@ validate(config, json.load(open("workflow/schemas/config.schema.json")), "workfl
 
 SRC = "src/penetration/"
 TASK = "workflow/scripts/run_task.py"
-FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig15", "fig16"]
+FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig15", "fig16"]
 TABLES = ["table1", "table2", "table3", "table4"]
 
 

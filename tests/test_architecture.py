@@ -5,9 +5,9 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
-ORDER = ["units", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "calibration", "reference",
+ORDER = ["units", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "calibration", "reference",
          "scenes", "tasks", "figures", "pipeline"]
-PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "calibration"]
+PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "calibration"]
 
 
 def imports(module):

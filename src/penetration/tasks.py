@@ -548,3 +548,40 @@ def trajectory_accuracy(inputs, outputs, params):
             rows.append({"method": method, "rtol": rtol, "rel_error": abs(tr.depth - exact) / exact,
                          "wall_time_s": float(np.median(times)), "rhs_evaluations": tr.evaluations})
     write_csv(pd.DataFrame(rows), outputs.csv)
+
+
+# --------------------------------------------------------------------- HJC
+def hjc_from_reference(refs, **switches):
+    """HJC material from the transcribed Table 1 (K column read as G; eps0 from the text)."""
+    from .hjc import HJC
+    r = lambda key: refs[f"table1.{key}"].si
+    return HJC(rho0=r("rho"), G=r("K"), A=r("A"), B=r("B"), C=r("C"), N=r("N"), fc=r("fc"), T=r("T"),
+               eps0=r("eps0_text"), efmin=r("efmin"), smax=r("smax"), pc=r("pc"), muc=r("muc"), pl=r("pl"),
+               mul=r("mul"), D1=r("D1"), D2=r("D2"), k1=r("k1"), k2=r("k2"), k3=r("k3"), **switches)
+
+
+@task
+def hjc_eos_paths(inputs, outputs, params):
+    """Hydrostatic load-unload paths of the HJC equation of state (Fig 10 data)."""
+    import math
+    from .hjc import PointState, drive
+    refs = reference.load_reference(inputs.reference)
+    rows = []
+    for lock in ("offset", "literal"):
+        mat = hjc_from_reference(refs, lock=lock)
+        virgin = _hydro_path(drive, mat, PointState.new(), params.mu_top, params.steps)
+        rows.append(pd.DataFrame({"lock": lock, "path": "loading", "mu": virgin["mu"], "p": virgin["p"]}))
+        for mu_max in params.unload_from:
+            st = PointState.new()
+            _hydro_path(drive, mat, st, mu_max, params.steps)
+            back = _hydro_path(drive, mat, st, params.unload_to, params.steps)
+            rows.append(pd.DataFrame({"lock": lock, "path": f"unload from {mu_max:g}", "mu": back["mu"],
+                                      "p": back["p"]}))
+    write_csv(pd.concat(rows, ignore_index=True), outputs.csv)
+
+
+def _hydro_path(drive, mat, state, mu_target, steps):
+    import math
+    de = (-math.log(1 + mu_target) - state.strain[:3].sum()) / steps / 3
+    out, _ = drive(mat, np.tile([de, de, de, 0, 0, 0], (steps, 1)), state=state)
+    return out

@@ -148,3 +148,19 @@ rule accuracy_trajectory:
     params: dpi=config["figures"]["dpi"],
     log: "results/logs/accuracy_trajectory.log",
     script: "../scripts/run_task.py"
+
+
+rule hjc_eos_paths:
+    input: f"{SRC}hjc.py", f"{SRC}tasks.py", reference=config["reference"],
+    output: csv="results/hjc/eos_paths.csv",
+    params: mu_top=0.2, unload_from=[0.02, 0.05, 0.09, 0.15], unload_to=-0.01, steps=400,
+    log: "results/logs/hjc_eos_paths.log",
+    script: "../scripts/run_task.py"
+
+
+rule fig10:
+    input: FIG_SRC, f"{SRC}figures/fig10.py", paths="results/hjc/eos_paths.csv", reference=config["reference"],
+    output: png="figures/fig10.png", csv="figures/fig10.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/fig10.log",
+    script: "../scripts/run_task.py"

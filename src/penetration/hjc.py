@@ -1,0 +1,313 @@
+"""Holmquist-Johnson-Cook (HJC) concrete (paper Eqs 12-18, Table 1).
+
+Sign convention: pressure p and volumetric strain mu = rho/rho0 - 1 are
+positive in compression; stresses are positive in tension (so the mean
+stress is -p). SI units.
+
+Decisions where the paper (and published codes) are ambiguous; each is a
+parameter where codes disagree:
+
+- Elastic constants: Table 1's "K" = 14.86 GPa is the shear modulus G of
+  the 1993 HJC set; the elastic bulk modulus is Ke = pc/muc (Eq 12).
+  Table 1's "E" is unused.
+- Lock strain (``lock``): "offset" (default) makes the fully dense curve of
+  Eq 15 pass through (mul, pl), i.e. mu_lock solves k1 x + k2 x^2 + k3 x^3
+  = pl with mu_lock = (mul - x)/(1 + x) = 0.0895; "literal" uses
+  mu_lock = mul, which drops the pressure from pl to 0 at mul (negative
+  tangent band up to mu = 0.1106).
+- Unloading in the crushing stage (Eq 14) uses the fully dense modulus k1
+  for the paper's "plastic volume modulus" K.
+- Tension branch of the strength surface (``tension``): "openradioss"
+  sigma* = A (1 + p/T)(1 - D), zero at p = -T; "sphinxsys"
+  sigma* = A max(0, 1 - D + p/T), zero at the damaged cutoff -T(1 - D).
+- Rate term (``rate_floor``): eps_dot* is floored at 1 so that the rate
+  term never weakens the material (OpenRadioss, SPHinXsys); Smax caps the
+  normalised strength after the rate factor.
+- Damage: D += (d eps_p + d mu_p)/max(EFMIN, D1 (P* + T*)^D2), with mu_p the
+  permanent crush strain mu_max - p_max/K_unload, frozen once fully dense.
+- Tension cut-off p >= -T(1 - D) in every region, re-applied after the
+  damage update.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from .geometry import ParameterError
+
+# indices into the parameter array used by the compiled kernels
+(I_RHO0, I_G, I_A, I_B, I_C, I_N, I_FC, I_T, I_EPS0, I_EFMIN, I_SMAX, I_PC, I_MUC, I_PL, I_MUL, I_D1, I_D2,
+ I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR) = range(24)
+LOCKS = ("offset", "literal")
+TENSIONS = ("openradioss", "sphinxsys")
+
+
+@dataclass(frozen=True)
+class HJC:
+    """HJC parameters (SI) and the convention switches; defaults are Table 1."""
+    rho0: float = 2440.0
+    G: float = 14.86e9
+    A: float = 0.79
+    B: float = 1.60
+    C: float = 0.007
+    N: float = 0.61
+    fc: float = 48e6
+    T: float = 4e6
+    eps0: float = 1.0
+    efmin: float = 0.01
+    smax: float = 7.0
+    pc: float = 16e6
+    muc: float = 0.001
+    pl: float = 0.80e9
+    mul: float = 0.10
+    D1: float = 0.04
+    D2: float = 1.0
+    k1: float = 85e9
+    k2: float = -171e9
+    k3: float = 208e9
+    lock: str = "offset"
+    tension: str = "openradioss"
+    rate_floor: bool = True
+
+    def __post_init__(self):
+        positive = ("rho0", "G", "A", "fc", "T", "eps0", "efmin", "smax", "pc", "muc", "pl", "mul", "D1", "k1")
+        for name in positive:
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise ParameterError("hjc", name, v, f"{name} > 0 (SI units)")
+        for name in ("B", "C", "N", "D2"):
+            if not getattr(self, name) >= 0:
+                raise ParameterError("hjc", name, getattr(self, name), f"{name} >= 0")
+        if not (self.pc < self.pl and self.muc < self.mul):
+            raise ParameterError("hjc", "pl, mul", (self.pl, self.mul), "pc < pl and muc < mul")
+        if self.lock not in LOCKS:
+            raise ParameterError("hjc", "lock", self.lock, f"one of {LOCKS}")
+        if self.tension not in TENSIONS:
+            raise ParameterError("hjc", "tension", self.tension, f"one of {TENSIONS}")
+
+    @property
+    def Ke(self):
+        """Elastic bulk modulus pc/muc (Eq 12)."""
+        return self.pc / self.muc
+
+    @property
+    def mu_lock(self):
+        """Volumetric strain at which the fully dense curve has zero pressure."""
+        if self.lock == "literal":
+            return self.mul
+        x = _dense_root(self.k1, self.k2, self.k3, self.pl)
+        return (self.mul - x) / (1.0 + x)
+
+    @property
+    def E(self):
+        """Young's modulus implied by Ke and G."""
+        return 9 * self.Ke * self.G / (3 * self.Ke + self.G)
+
+    @property
+    def nu(self):
+        """Poisson's ratio implied by Ke and G."""
+        return (3 * self.Ke - 2 * self.G) / (2 * (3 * self.Ke + self.G))
+
+    def as_array(self) -> np.ndarray:
+        vals = [self.rho0, self.G, self.A, self.B, self.C, self.N, self.fc, self.T, self.eps0, self.efmin, self.smax,
+                self.pc, self.muc, self.pl, self.mul, self.D1, self.D2, self.k1, self.k2, self.k3, self.Ke,
+                self.mu_lock, float(TENSIONS.index(self.tension)), float(self.rate_floor)]
+        return np.array(vals, float)
+
+
+def _dense_root(k1, k2, k3, p):
+    """Smallest positive x with k1 x + k2 x^2 + k3 x^3 = p (Newton from p/k1)."""
+    x = p / k1
+    for _ in range(100):
+        f = k1 * x + k2 * x * x + k3 * x**3 - p
+        x_new = x - f / (k1 + 2 * k2 * x + 3 * k3 * x * x)
+        if abs(x_new - x) < 1e-16:
+            break
+        x = x_new
+    return x
+
+
+# ------------------------------------------------------- compiled kernels
+@njit(cache=True)
+def dense_pressure(mu, q):
+    """Fully dense curve (Eq 15); linear k1 in tension."""
+    mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
+    if mb <= 0.0:
+        return q[I_K1] * mb
+    return q[I_K1] * mb + q[I_K2] * mb * mb + q[I_K3] * mb * mb * mb
+
+
+@njit(cache=True)
+def loading_pressure(mu, q):
+    """Virgin loading curve p(mu): Eqs 12, 13, 15."""
+    if mu <= q[I_MUC]:
+        return q[I_KE] * mu
+    if mu <= q[I_MUL]:
+        return q[I_PC] + (q[I_PL] - q[I_PC]) * (mu - q[I_MUC]) / (q[I_MUL] - q[I_MUC])
+    return dense_pressure(mu, q)
+
+
+@njit(cache=True)
+def unloading_modulus(mu_max, q):
+    """(1 - F) Ke + F k1 with F = (mu_max - muc)/(mul - muc), Eq 14."""
+    F = (mu_max - q[I_MUC]) / (q[I_MUL] - q[I_MUC])
+    F = min(max(F, 0.0), 1.0)
+    return (1.0 - F) * q[I_KE] + F * q[I_K1]
+
+
+@njit(cache=True)
+def eos(mu, mu_max, q):
+    """Pressure, new mu_max and permanent crush strain mu_p (before the cut-off).
+
+    Loading beyond mu_max follows the virgin curve; below it the path is
+    elastic (region I), the Eq 14 line (region II) or the dense curve.
+    """
+    if mu >= mu_max:
+        mu_max = mu
+        p = loading_pressure(mu, q)
+    elif mu_max <= q[I_MUC]:
+        p = q[I_KE] * mu
+    elif mu_max <= q[I_MUL]:
+        p = loading_pressure(mu_max, q) - unloading_modulus(mu_max, q) * (mu_max - mu)
+    else:
+        p = dense_pressure(mu, q)
+    return p, mu_max, permanent_strain(mu_max, q)
+
+
+@njit(cache=True)
+def permanent_strain(mu_max, q):
+    """Crush (plastic volumetric) strain left after unloading from mu_max."""
+    if mu_max <= q[I_MUC]:
+        return 0.0
+    m = min(mu_max, q[I_MUL])
+    return m - loading_pressure(m, q) / unloading_modulus(m, q)
+
+
+@njit(cache=True)
+def cutoff(p, D, q):
+    return max(p, -q[I_T] * (1.0 - D))
+
+
+@njit(cache=True)
+def strength(p, D, rate, q):
+    """Yield stress sigma_y (Pa) at pressure p, damage D, equivalent strain rate (1/s)."""
+    fc = q[I_FC]
+    r = rate / q[I_EPS0]
+    if q[I_RATEFLOOR] > 0.5:
+        r = max(r, 1.0)
+    factor = 1.0 + q[I_C] * math.log(r) if r > 0.0 else 1.0
+    ps = p / fc
+    if ps >= 0.0:
+        s = q[I_A] * (1.0 - D) + q[I_B] * ps ** q[I_N]
+    elif q[I_TENSION] < 0.5:
+        s = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D)
+    else:
+        s = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
+    s = max(s, 0.0) * factor
+    return fc * min(s, q[I_SMAX])
+
+
+@njit(cache=True)
+def fracture_strain(p, q):
+    """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18."""
+    x = (p + q[I_T]) / q[I_FC]
+    if x <= 0.0:
+        return q[I_EFMIN]
+    return max(q[I_EFMIN], q[I_D1] * x ** q[I_D2])
+
+
+@njit(cache=True)
+def update_point(s, mu, mu_max, mu_p, D, deps, rate, q):
+    """One HJC stress update of a material point (hypo-elastic, radial return).
+
+    s: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
+    components), already rotated (Jaumann) by the caller; deps: total
+    strain increment (same layout, tensor shear). Returns new s (in place),
+    p, mu_max, mu_p, D, and the plastic strain increment.
+    """
+    G = q[I_G]
+    tr = (deps[0] + deps[1] + deps[2]) / 3.0
+    for i in range(3):
+        s[i] += 2.0 * G * (deps[i] - tr)
+    for i in range(3, 6):
+        s[i] += 2.0 * G * deps[i]
+    p, mu_max, mu_p_new = eos(mu, mu_max, q)
+    p = cutoff(p, D, q)
+    j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5]
+    seq = math.sqrt(3.0 * j2)
+    sy = strength(p, D, rate, q)
+    dep = 0.0
+    if seq > sy:
+        scale = sy / seq if seq > 0.0 else 0.0
+        for i in range(6):
+            s[i] *= scale
+        dep = (seq - sy) / (3.0 * G)
+    dmu_p = max(mu_p_new - mu_p, 0.0)
+    D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q))
+    p = cutoff(p, D, q)
+    return p, mu_max, mu_p_new, D, dep
+
+
+def jaumann(s, w, dt):
+    """Rotate a Voigt deviatoric stress by the spin w (3x3, antisymmetric) over dt.
+
+    Hughes-Winget: R = (I - w dt/2)^-1 (I + w dt/2) is orthogonal, so the
+    stress invariants are kept exactly; it is the Jaumann rate to second order.
+    """
+    eye = np.eye(3)
+    R = np.linalg.solve(eye - 0.5 * dt * w, eye + 0.5 * dt * w)
+    S = voigt_to_matrix(s)
+    return matrix_to_voigt(R @ S @ R.T)
+
+
+def voigt_to_matrix(s):
+    return np.array([[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]])
+
+
+def matrix_to_voigt(S):
+    return np.array([S[0, 0], S[1, 1], S[2, 2], S[0, 1], S[1, 2], S[0, 2]])
+
+
+@dataclass
+class PointState:
+    """History of one material point for single-element drivers."""
+    s: np.ndarray
+    p: float = 0.0
+    mu_max: float = 0.0
+    mu_p: float = 0.0
+    D: float = 0.0
+    eps_p: float = 0.0
+    strain: np.ndarray = None
+
+    @classmethod
+    def new(cls):
+        return cls(np.zeros(6), strain=np.zeros(6))
+
+
+def drive(material: HJC, increments, rate=1.0, state: PointState | None = None, spin=None, dt=1.0):
+    """Single-element driver: apply total strain increments (Voigt, tensor shear).
+
+    mu follows from the accumulated volumetric strain as exp(-eps_v) - 1
+    (compression positive). Returns arrays of p, mu, the equivalent stress,
+    D, eps_p and the Voigt stress history (tension positive).
+    """
+    q = material.as_array()
+    st = state or PointState.new()
+    out = {k: [] for k in ("p", "mu", "seq", "D", "eps_p", "sigma")}
+    for de in np.atleast_2d(np.asarray(increments, float)):
+        if spin is not None:
+            st.s = jaumann(st.s, spin, dt)
+        st.strain = st.strain + de
+        mu = math.exp(-(st.strain[0] + st.strain[1] + st.strain[2])) - 1.0
+        st.p, st.mu_max, st.mu_p, st.D, dep = update_point(st.s, mu, st.mu_max, st.mu_p, st.D, de, rate, q)
+        st.eps_p += dep
+        sig = st.s.copy()
+        sig[:3] -= st.p
+        j2 = 0.5 * (st.s[:3] @ st.s[:3]) + st.s[3:] @ st.s[3:]
+        for k, v in (("p", st.p), ("mu", mu), ("seq", math.sqrt(3 * j2)), ("D", st.D), ("eps_p", st.eps_p),
+                     ("sigma", sig)):
+            out[k].append(v)
+    return {k: np.array(v) for k, v in out.items()}, st

@@ -1,0 +1,174 @@
+"""HJC single-element tests against closed forms (design note 2.8)."""
+import math
+
+import numpy as np
+import pytest
+
+from penetration.geometry import ParameterError
+from penetration.hjc import HJC, PointState, drive, eos, fracture_strain, loading_pressure, strength
+
+MAT = HJC()
+Q = MAT.as_array()
+
+
+def hydro(mu_target, n=400, state=None, material=MAT):
+    """Hydrostatic path from the state's volumetric strain to mu_target."""
+    st = state or PointState.new()
+    ev0 = st.strain[:3].sum()
+    ev1 = -math.log(1 + mu_target)
+    de = (ev1 - ev0) / n / 3
+    return drive(material, np.tile([de, de, de, 0, 0, 0], (n, 1)), state=st)
+
+
+def p_virgin(mu, m=MAT):
+    """Independent transcription of Eqs 12, 13, 15 with the offset lock."""
+    if mu <= m.muc:
+        return m.pc / m.muc * mu
+    if mu <= m.mul:
+        return m.pc + (m.pl - m.pc) * (mu - m.muc) / (m.mul - m.muc)
+    mb = (mu - m.mu_lock) / (1 + m.mu_lock)
+    return m.k1 * mb + m.k2 * mb**2 + m.k3 * mb**3
+
+
+def test_derived_elastic_constants_decode_table1():
+    assert MAT.Ke == pytest.approx(16e9)
+    assert MAT.E == pytest.approx(34.04e9, rel=1e-3)
+    assert MAT.nu == pytest.approx(0.145, abs=5e-4)
+
+
+def test_hydrostatic_loading_follows_the_three_stages():
+    out, _ = hydro(0.2)
+    expected = np.array([p_virgin(m) for m in out["mu"]])
+    assert np.allclose(out["p"], expected, rtol=1e-12, atol=1.0)
+
+
+def test_offset_lock_is_continuous_literal_is_not():
+    assert p_virgin(MAT.mul + 1e-12) == pytest.approx(MAT.pl, rel=1e-6)
+    lit = HJC(lock="literal")
+    ql = lit.as_array()
+    assert loading_pressure(lit.mul + 1e-9, ql) == pytest.approx(0.0, abs=1e3)  # the literal drop to zero
+    mus = np.linspace(0, 0.25, 5001)
+    jumps = np.abs(np.diff([loading_pressure(m, Q) for m in mus]))
+    assert jumps.max() < 0.02 * MAT.pl  # no jump larger than the grid step times the stiffest slope
+
+
+@pytest.mark.parametrize("mu_max", [0.02, 0.05, 0.09])
+def test_unloading_from_crush_stage_has_eq14_slope(mu_max):
+    _, st = hydro(mu_max)
+    out, _ = hydro(mu_max - 0.004, n=40, state=st)
+    F = (mu_max - MAT.muc) / (MAT.mul - MAT.muc)
+    K = (1 - F) * MAT.Ke + F * MAT.k1
+    slope = (out["p"][-1] - out["p"][0]) / (out["mu"][-1] - out["mu"][0])
+    assert slope == pytest.approx(K, rel=1e-9)
+
+
+def test_reload_returns_to_the_virgin_curve():
+    _, st = hydro(0.06)
+    _, st = hydro(0.03, state=st)
+    out, _ = hydro(0.08, state=st)
+    assert out["p"][-1] == pytest.approx(p_virgin(0.08), rel=1e-9)
+
+
+def test_uniaxial_strain_leaves_permanent_crush_strain():
+    st = PointState.new()
+    n = 500
+    de = -math.log(1.12) / n
+    load, st = drive(MAT, np.tile([de, 0, 0, 0, 0, 0], (n, 1)), state=st)
+    assert load["p"].max() > 1e9
+    mu_p = st.mu_p
+    unload, st = drive(MAT, np.tile([-de, 0, 0, 0, 0, 0], (n, 1)), state=st)
+    assert 0.05 < mu_p < 0.1
+    # on the way back the pressure reaches zero at mu = mu_p (dense: at mu_lock), not at mu = 0
+    zero = unload["mu"][np.argmin(np.abs(unload["p"]))]
+    assert zero == pytest.approx(MAT.mu_lock, abs=2e-3)
+
+
+@pytest.mark.parametrize("pstar", [0.0, 1.0, 5.0, 10.0, 20.0])
+def test_strength_surface(pstar):
+    p = pstar * MAT.fc
+    expected = min(MAT.smax, MAT.A + MAT.B * pstar**MAT.N) * MAT.fc
+    assert strength(p, 0.0, 1.0, Q) == pytest.approx(expected, rel=1e-12)
+
+
+@pytest.mark.parametrize("mu0", [0.0, 0.005, 0.05])
+def test_first_yield_in_shear_at_the_surface(mu0):
+    """Confine, then shear at constant volume: first yield at sigma_y(p, D) of that state."""
+    st = PointState.new()
+    if mu0 > 0:
+        _, st = hydro(mu0, state=st)
+    p0, d0 = st.p, st.D
+    g = 5e-6
+    out, st = drive(MAT, np.tile([0, 0, 0, g, 0, 0], (3000, 1)), state=st)
+    first = np.argmax(out["eps_p"] > 0)
+    assert first > 0
+    assert out["seq"][first] == pytest.approx(strength(p0, d0, 1.0, Q), rel=1e-9)
+
+
+def test_pure_shear_at_zero_pressure_fails_at_efmin():
+    out, _ = drive(MAT, np.tile([0, 0, 0, 5e-5, 0, 0], (2000, 1)))
+    assert np.allclose(out["p"], 0.0)
+    assert fracture_strain(0.0, Q) == pytest.approx(MAT.efmin)
+    full = np.argmax(out["D"] >= 1.0)
+    assert out["D"][-1] == 1.0
+    assert out["eps_p"][full] == pytest.approx(MAT.efmin, rel=2e-2)
+    assert out["seq"][-1] == pytest.approx(0.0, abs=1.0)
+
+
+def test_tension_cutoff_and_damage():
+    out, st = hydro(-0.01)
+    assert out["p"].min() == pytest.approx(-MAT.T, rel=1e-12)
+    drive(MAT, np.tile([0, 0, 0, 5e-5, 0, 0], (2000, 1)), state=st)  # damage it fully
+    out, _ = hydro(-0.02, state=st, n=50)
+    assert out["p"].min() == pytest.approx(0.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("tension", ["openradioss", "sphinxsys"])
+def test_tension_branches_reach_zero_where_documented(tension):
+    q = HJC(tension=tension).as_array()
+    assert strength(-MAT.T, 0.0, 1.0, q) == pytest.approx(0.0, abs=1e-9)
+    D = 0.5
+    zero_at = -MAT.T if tension == "openradioss" else -MAT.T * (1 - D)
+    assert strength(zero_at, D, 1.0, q) == pytest.approx(0.0, abs=1e-6)
+    assert strength(0.5 * zero_at, D, 1.0, q) > 0
+
+
+def test_rate_effect_and_floor():
+    s1 = strength(MAT.fc, 0.0, 1.0, Q)
+    assert strength(MAT.fc, 0.0, 1e4, Q) / s1 == pytest.approx(1 + MAT.C * math.log(1e4), rel=1e-12)
+    assert strength(MAT.fc, 0.0, 1e-3, Q) == pytest.approx(s1)
+    q = HJC(rate_floor=False).as_array()
+    assert strength(MAT.fc, 0.0, 1e-3, q) < s1
+
+
+def test_rigid_rotation_keeps_invariants():
+    st = PointState.new()
+    _, st = hydro(0.004, state=st)
+    drive(MAT, [[2e-5, -1e-5, -1e-5, 1e-5, 0, 0]], state=st)
+    j2 = lambda s: 0.5 * s[:3] @ s[:3] + s[3:] @ s[3:]
+    before, s0 = j2(st.s), st.s.copy()
+    w = np.array([[0, -1.0, 0], [1.0, 0, 0], [0, 0, 0]])
+    out, st2 = drive(MAT, np.zeros((200, 6)), state=st, spin=w, dt=math.pi / 2 / 200)
+    assert j2(st2.s) == pytest.approx(before, rel=1e-12)
+    assert not np.allclose(st2.s, s0)  # it did rotate
+
+
+def test_step_halving_converges_on_a_mixed_path():
+    """Compression with a shear direction turning through 180 deg: first-order convergence."""
+    def path(n):
+        th = np.linspace(0, math.pi, n, endpoint=False) + math.pi / (2 * n)
+        amp = 2e-2 / n
+        inc = np.zeros((n, 6))
+        inc[:, :3] = -1e-2 / n / 3
+        inc[:, 3], inc[:, 5] = amp * np.cos(th), amp * np.sin(th)
+        return inc
+    final = [drive(MAT, path(n))[0]["sigma"][-1] for n in (100, 200, 400, 1600)]
+    errs = [np.linalg.norm(final[i] - final[-1]) for i in range(3)]
+    assert errs[0] > errs[1] > errs[2] > 0
+    assert errs[1] / errs[2] == pytest.approx(2.0, rel=0.35)
+
+
+def test_bad_parameters():
+    with pytest.raises(ParameterError, match="lock"):
+        HJC(lock="glued")
+    with pytest.raises(ParameterError, match="pc"):
+        HJC(pc=-1.0)
