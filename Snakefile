@@ -9,13 +9,19 @@ configfile: "workflow/config.yaml"
 validate(config, json.load(open("workflow/schemas/config.schema.json")), "workflow/config.yaml (with overrides)")
 
 SRC = "src/penetration/"
+
+
+wildcard_constraints:
+    scene=r"[A-Za-z0-9_]+",
 TASK = "workflow/scripts/run_task.py"
-FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig15", "fig16"]
+FIG_SRC = [f"{SRC}figures/common.py", f"{SRC}tasks.py", f"{SRC}reference.py"]
+FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig12", "fig14", "fig15", "fig16"]
 TABLES = ["table1", "table2", "table3", "table4"]
 
 
 include: "workflow/rules/geometry.smk"
 include: "workflow/rules/dop.smk"
+include: "workflow/rules/cavity.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reference.smk"
 
@@ -31,3 +37,5 @@ rule all:
         "figures/validation.png",
         "figures/validation.csv",
         "figures/accuracy_trajectory.png",
+        "figures/cavity_sigma_n.png",
+        "figures/ablation_cavity.csv",

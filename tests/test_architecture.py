@@ -5,9 +5,11 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
-ORDER = ["units", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "calibration", "reference",
+ORDER = ["units", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
+         "calibration", "reference",
          "scenes", "tasks", "figures", "pipeline"]
-PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "calibration"]
+PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
+           "calibration"]
 
 
 def imports(module):
@@ -41,3 +43,7 @@ def test_dop_and_simulation_levels_are_independent():
     """The closed form and the trajectory engine check each other, so neither imports the other."""
     assert "trajectory" not in imports("dop")
     assert "dop" not in imports("trajectory")
+
+
+def test_cavity_level_does_not_use_the_closed_form():
+    assert "dop" not in imports("cavity") and "dop" not in imports("cavity_level")

@@ -126,7 +126,8 @@ def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg):
     if kind == HJC_KIND:
         dmu = max(mup_new - mup[j], 0.0)
         mup[j] = mup_new
-        dmg[j] = min(1.0, dmg[j] + (dep + dmu) / fracture_strain(pn, q))
+        if q[25] > 0.5:  # I_DAMAGE
+            dmg[j] = min(1.0, dmg[j] + (dep + dmu) / fracture_strain(pn, q))
         pn = max(pn, -q[7] * (1.0 - dmg[j]))
     p[j] = pn
 

@@ -27,6 +27,10 @@ parameter where codes disagree:
   permanent crush strain mu_max - p_max/K_unload, frozen once fully dense.
 - Tension cut-off p >= -T(1 - D) in every region, re-applied after the
   damage update.
+- Switches for ablation studies: ``rate`` (C term), ``damage`` (D frozen at
+  0) and ``strength_scale``, a factor on the whole strength surface (the
+  in-situ strength relative to the laboratory parameter set; the one
+  parameter calibrated on the DO1 shot at the cavity level).
 """
 from __future__ import annotations
 
@@ -40,7 +44,7 @@ from .geometry import ParameterError
 
 # indices into the parameter array used by the compiled kernels
 (I_RHO0, I_G, I_A, I_B, I_C, I_N, I_FC, I_T, I_EPS0, I_EFMIN, I_SMAX, I_PC, I_MUC, I_PL, I_MUL, I_D1, I_D2,
- I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR) = range(24)
+ I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR, I_SCALE, I_DAMAGE) = range(26)
 LOCKS = ("offset", "literal")
 TENSIONS = ("openradioss", "sphinxsys")
 
@@ -71,6 +75,9 @@ class HJC:
     lock: str = "offset"
     tension: str = "openradioss"
     rate_floor: bool = True
+    rate: bool = True
+    damage: bool = True
+    strength_scale: float = 1.0
 
     def __post_init__(self):
         positive = ("rho0", "G", "A", "fc", "T", "eps0", "efmin", "smax", "pc", "muc", "pl", "mul", "D1", "k1")
@@ -78,6 +85,8 @@ class HJC:
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise ParameterError("hjc", name, v, f"{name} > 0 (SI units)")
+        if not (math.isfinite(self.strength_scale) and self.strength_scale > 0):
+            raise ParameterError("hjc", "strength_scale", self.strength_scale, "strength_scale > 0")
         for name in ("B", "C", "N", "D2"):
             if not getattr(self, name) >= 0:
                 raise ParameterError("hjc", name, getattr(self, name), f"{name} >= 0")
@@ -112,9 +121,10 @@ class HJC:
         return (3 * self.Ke - 2 * self.G) / (2 * (3 * self.Ke + self.G))
 
     def as_array(self) -> np.ndarray:
-        vals = [self.rho0, self.G, self.A, self.B, self.C, self.N, self.fc, self.T, self.eps0, self.efmin, self.smax,
+        vals = [self.rho0, self.G, self.A, self.B, self.C if self.rate else 0.0, self.N, self.fc, self.T, self.eps0, self.efmin, self.smax,
                 self.pc, self.muc, self.pl, self.mul, self.D1, self.D2, self.k1, self.k2, self.k3, self.Ke,
-                self.mu_lock, float(TENSIONS.index(self.tension)), float(self.rate_floor)]
+                self.mu_lock, float(TENSIONS.index(self.tension)), float(self.rate_floor),
+                self.strength_scale, float(self.damage)]
         return np.array(vals, float)
 
 
@@ -198,7 +208,7 @@ def strength(p, D, rate, q):
     r = rate / q[I_EPS0]
     if q[I_RATEFLOOR] > 0.5:
         r = max(r, 1.0)
-    factor = 1.0 + q[I_C] * math.log(r) if r > 0.0 else 1.0
+    factor = 1.0 + q[I_C] * math.log(r) if r > 0.0 else 1.0  # C = 0 switches the rate term off
     ps = p / fc
     if ps >= 0.0:
         s = q[I_A] * (1.0 - D) + q[I_B] * ps ** q[I_N]
@@ -207,7 +217,7 @@ def strength(p, D, rate, q):
     else:
         s = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
     s = max(s, 0.0) * factor
-    return fc * min(s, q[I_SMAX])
+    return q[I_SCALE] * fc * min(s, q[I_SMAX])
 
 
 @njit(cache=True)
@@ -246,7 +256,8 @@ def update_point(s, mu, mu_max, mu_p, D, deps, rate, q):
             s[i] *= scale
         dep = (seq - sy) / (3.0 * G)
     dmu_p = max(mu_p_new - mu_p, 0.0)
-    D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q))
+    if q[I_DAMAGE] > 0.5:
+        D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q))
     p = cutoff(p, D, q)
     return p, mu_max, mu_p_new, D, dep
 

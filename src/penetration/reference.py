@@ -343,3 +343,32 @@ def fig15_rows(refs, fig15, do1_pd_stated, do1_pd_calibrated):
     return [_row(ref, ref.quantity, ref.case, diff, "reproduced" if diff > 0 else "deviates"),
             compare(ex, do1_pd_stated, case="DO1 835 m/s (ours; S = 72 fc^-0.5)"),
             _row(ex, ex.quantity, "DO1 835 m/s (ours; S calibrated to it)", do1_pd_calibrated, "not-derivable")]
+
+
+def cavity_rows(refs, table3, cavity, do1_depth, scale):
+    """Cavity level: Table 3's simulation column, the 1200 m/s gains, Fig 14, Fig 12.
+
+    table3: rows with velocity_ms, nose, cavity_m; cavity: rows of the cavity
+    Table 3 scene (nose, velocity, peak_deceleration, duration).
+    """
+    R, rows = refs, []
+    for r in table3:
+        ref = R[f"table3.sim.{r['velocity_ms']}.{r['nose']}"]
+        rows.append(compare(ref, r["cavity_m"], case=f"{ref.case} (cavity level; strength scale calibrated on DO1)"))
+    by = {(r["velocity_ms"], r["nose"]): r["cavity_m"] for r in table3}
+    for key, other in (("text.gain_1200_crh45", "crh45"), ("text.gain_1200_crh3", "crh3")):
+        rows.append(compare(R[key], by[(1200, "double_ogive")] - by[(1200, other)], case="1200 (ours: cavity level)"))
+    at = {(c["nose"], c["velocity"]): c for c in cavity}
+    for ref_id, other, q in (("fig14.peak_do_below_crh3", "crh3", "peak_deceleration"),
+                             ("fig14.peak_do_below_crh45", "crh45", "peak_deceleration"),
+                             ("fig14.pulse_do_longer_crh3", "crh3", "duration"),
+                             ("fig14.pulse_do_longer_crh45", "crh45", "duration")):
+        ref = R[ref_id]
+        for v in sorted({c["velocity"] for c in cavity}):
+            diff = at[("double_ogive", v)][q] - at[(other, v)][q]
+            rows.append(_row(ref, ref.quantity + " (relative)", f"{v:.0f} m/s", diff / at[(other, v)][q],
+                             "reproduced" if holds(ref.relation, 0.0, diff, 0.0) else "deviates"))
+    ref = R["table2.dop"]
+    rows.append(_row(ref, "dop", f"DO1 (cavity level; strength scale {scale:.4g} calibrated to it)", do1_depth,
+                     "not-derivable"))
+    return rows

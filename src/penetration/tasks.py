@@ -183,7 +183,11 @@ def _model_rows(refs, inputs):
             + reference.ordering_rows(refs, sec22)
             + reference.fig01_rows(refs, pd.read_csv(inputs.shares).to_dict("records"))
             + reference.fig15_rows(refs, pd.read_csv(inputs.fig15).to_dict("records"), do1.trajectory_dop / d_do1,
-                                   calibrated_pd))
+                                   calibrated_pd)
+            + reference.cavity_rows(refs, pd.read_csv(inputs.table3).to_dict("records"),
+                                    pd.read_csv(inputs.cavity_table3).to_dict("records"),
+                                    float(pd.read_csv(inputs.cavity_do1).cavity_dop.iloc[0]),
+                                    load_json(inputs.cal_cavity)["strength_scale"]))
 
 
 class _Tracking(dict):
@@ -585,3 +589,122 @@ def _hydro_path(drive, mat, state, mu_target, steps):
     de = (-math.log(1 + mu_target) - state.strain[:3].sum()) / steps / 3
     out, _ = drive(mat, np.tile([de, de, de, 0, 0, 0], (steps, 1)), state=state)
     return out
+
+
+# ----------------------------------------------------------- cavity level
+def _cavity_settings(cfg):
+    from .cavity import Controls, Mesh
+    return (Mesh(zones=cfg["zones"], cap=cfg["cap"]),
+            Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"]))
+
+
+def _cavity_material(refs, cfg, scale=1.0, **overrides):
+    switches = {k: cfg[k] for k in ("lock", "tension", "rate_floor")}
+    base = hjc_from_reference(refs, strength_scale=scale, **switches)
+    return dataclasses.replace(base, **overrides)
+
+
+@task
+def calibrate_cavity_do1(inputs, outputs, params):
+    """HJC strength scale that makes the cavity-level DO1 trajectory reach 5.1 m."""
+    import time
+    from .cavity_level import calibrate_strength_scale
+    refs = reference.load_reference(inputs.reference)
+    cfg = params.cfg
+    mesh, controls = _cavity_settings(cfg)
+    nose = read_inference(inputs.do1)["nose"]
+    depth, vs = refs[params.depth].si, refs[params.velocity].si
+    t0 = time.perf_counter()
+    fit = calibrate_strength_scale(_cavity_material(refs, cfg), nose, refs["table2.mass"].si, vs, depth,
+                                   cfg["velocities"], nose.radius, tuple(cfg["effects"]), 0.0, mesh, controls)
+    write_json({"calibration": "cavity_do1", "fitted_quantity": "HJC strength_scale: factor on the whole strength "
+                "surface, the in-situ strength of the target relative to the laboratory set of Table 1 (the "
+                "counterpart of the paper's calibrated erosion strain fs: both weaken the target)",
+                "data": {"measured_depth": depth, "vs": vs, "mass": refs["table2.mass"].si, "nose": "table4_do1",
+                         "effects": cfg["effects"]},
+                "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
+
+
+@task
+def cavity_table(inputs, outputs, params):
+    """sigma_n(v) of the calibrated HJC target (and the uncalibrated one) with solver statistics."""
+    import time
+    from .cavity_level import sigma_table
+    from .scenes import load_json
+    refs = reference.load_reference(inputs.reference)
+    cfg = params.cfg
+    mesh, controls = _cavity_settings(cfg)
+    scale = load_json(inputs.cal)["strength_scale"]
+    rows = []
+    for label, s in (("calibrated", scale), ("table1", 1.0)):
+        t0 = time.perf_counter()
+        table, results = sigma_table(_cavity_material(refs, cfg, s), cfg["velocities"], params.radius, mesh, controls)
+        cost = time.perf_counter() - t0
+        stats = [None] + results
+        for v, sig, ex, r in zip(table.v, table.sigma, table.extrapolated, stats):
+            rows.append({"material": label, "strength_scale": s, "velocity": v, "sigma_n": sig, "extrapolated": bool(ex),
+                         "cycles": r.cycles if r else 0, "converged": bool(r.converged) if r else False})
+        print(f"{label}: table of {len(results)} velocities in {cost:.2f} s")
+    write_csv(pd.DataFrame(rows), outputs.csv)
+
+
+def read_sigma_table(path, material="calibrated"):
+    from .cavity_level import SigmaTable
+    t = pd.read_csv(path)
+    t = t[t.material == material].sort_values("velocity")
+    return SigmaTable(t.velocity.to_numpy(), t.sigma_n.to_numpy(), t.extrapolated.to_numpy())
+
+
+@task
+def scene_cavity(inputs, outputs, params):
+    """A cavity-level scene: depth and histories of every nose and velocity."""
+    from .cavity_level import cavity_trajectory
+    sc = _resolved(inputs.scene, inputs.schema, inputs)
+    table = read_sigma_table(inputs.sigma)
+    rows, hist = [], []
+    for name, nose in sc.noses.items():
+        for v in sc.velocities:
+            tr = cavity_trajectory(nose, sc.mass, v, table, sc.effects, sc.friction, params.rtol)
+            rows.append({"scene": sc.name, "nose": name, "nstar": nstar(nose), "velocity": v, "cavity_dop": tr.depth,
+                         "dop_over_d": tr.depth / (2 * nose.radius), "duration": tr.duration,
+                         "peak_deceleration": float(tr.deceleration.max()),
+                         "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0})
+            hist.append(pd.DataFrame({"nose": name, "velocity": v, "t": tr.t, "z": tr.z, "v": tr.v,
+                                      "deceleration": tr.deceleration}))
+    write_csv(pd.DataFrame(rows), outputs.dop)
+    write_csv(pd.concat(hist, ignore_index=True), outputs.histories)
+
+
+@task
+def cavity_ablation(inputs, outputs, params):
+    """Each effect of the cavity level switched off (or on) in turn: DOP change and cost for DO1."""
+    import time
+    from .cavity_level import cavity_trajectory, sigma_table
+    from .scenes import load_json
+    refs = reference.load_reference(inputs.reference)
+    cfg = params.cfg
+    mesh, controls = _cavity_settings(cfg)
+    scale = load_json(inputs.cal)["strength_scale"]
+    nose = read_inference(inputs.do1)["nose"]
+    mass, vs = refs["table2.mass"].si, refs["table2.velocity"].si
+    base_effects = tuple(cfg["effects"])
+    variants = [("baseline", {}, base_effects, 0.0),
+                ("strain-rate term off", {"rate": False}, base_effects, 0.0),
+                ("damage off", {"damage": False}, base_effects, 0.0),
+                ("strength cap Smax off", {"smax": 1e6}, base_effects, 0.0),
+                ("literal lock strain", {"lock": "literal"}, base_effects, 0.0),
+                ("tension branch sphinxsys", {"tension": "sphinxsys"}, base_effects, 0.0),
+                ("crater replaced by nose entry", {}, ("nose_entry", "cavity"), 0.0),
+                ("friction on (mu = 0.1)", {}, base_effects + ("friction",), 0.1)]
+    rows = []
+    for label, over, effects, mu in variants:
+        t0 = time.perf_counter()
+        table, _ = sigma_table(_cavity_material(refs, cfg, scale, **over), cfg["velocities"], nose.radius, mesh,
+                               controls)
+        t1 = time.perf_counter()
+        tr = cavity_trajectory(nose, mass, vs, table, effects, mu)
+        t2 = time.perf_counter()
+        rows.append({"variant": label, "dop": tr.depth, "table_time_s": t1 - t0, "trajectory_time_s": t2 - t1})
+    frame = pd.DataFrame(rows)
+    frame["dop_change_pct"] = 100 * (frame.dop / frame.dop.iloc[0] - 1)
+    write_csv(frame, outputs.csv)

@@ -28,7 +28,7 @@ from .geometry import ParameterError
 from .nstar import cumulative_nstar
 from .resistance import NoseSurface, Target, crater_coefficient, nose_force, nose_surface
 
-EFFECTS = ("crater", "nose_entry", "static", "inertial", "friction", "free_surface_ramp")
+EFFECTS = ("crater", "nose_entry", "static", "inertial", "friction", "free_surface_ramp", "cavity")
 
 
 @dataclass(frozen=True)
@@ -117,14 +117,48 @@ class FreeSurfaceRamp:
 
 
 @dataclass(frozen=True)
+class CavityStress:
+    """Tabulated normal stress sigma_n(v_n) integrated over the wetted nose (Eq 2)."""
+    surface: NoseSurface
+    sigma_n: object
+    mu: float
+    embed: bool
+    start: float = 0.0
+
+    def force(self, z, v):
+        if z < self.start:
+            return 0.0
+        return nose_force(self.surface, v, self.sigma_n, self.mu, z - self.start if self.embed else None)
+
+
+def cavity_crater_coefficient(mass, radius, vs, full_force):
+    """c of the crater law F = c z for a general force law F(V) on the embedded nose.
+
+    Continuity at z = 4a: c 4a = F(V1) with V1^2 = vs^2 - 16 a^2 c / m (Eq 8's
+    construction); if even F(0) stops the shot inside the crater, c = F(0)/4a.
+    """
+    from scipy.optimize import brentq
+    g = lambda v1: v1 * v1 - vs * vs + 4 * radius * full_force(v1) / mass
+    if g(0.0) >= 0:
+        return full_force(0.0) / (4 * radius)
+    v1 = brentq(g, 0.0, vs, xtol=1e-12)
+    return full_force(v1) / (4 * radius)
+
+
+@dataclass(frozen=True)
 class Assembly:
     """The effects of a scene and the depths where the force is not smooth."""
     effects: tuple
     breaks: tuple = field(default=())
 
 
-def assemble(names, nose, nstar, mass, target: Target, vs, mu=0.0, ramp_depth=None) -> Assembly:
-    """Effect objects for the listed effect names (see module docstring)."""
+def assemble(names, nose, nstar, mass, target: Target, vs, mu=0.0, ramp_depth=None, sigma_n=None) -> Assembly:
+    """Effect objects for the listed effect names (see module docstring).
+
+    ``cavity`` integrates the tabulated ``sigma_n(v_n)`` of the cavity-expansion
+    level over the nose (friction included when ``friction`` is listed) and
+    replaces ``static`` and ``inertial``.
+    """
     unknown = [n for n in names if n not in EFFECTS]
     if unknown:
         raise ParameterError("scene", "effects", unknown, f"names among {list(EFFECTS)}")
@@ -133,6 +167,8 @@ def assemble(names, nose, nstar, mass, target: Target, vs, mu=0.0, ramp_depth=No
                              "crater replaces the entry model: not together with nose_entry or free_surface_ramp")
     a = nose.radius
     embed = "nose_entry" in names
+    if "cavity" in names:
+        return _assemble_cavity(names, nose, mass, vs, mu, sigma_n, embed)
     wet = wetted(nose, nstar, embed)
     start, effects, breaks = 0.0, [], []
     if "crater" in names:
@@ -151,6 +187,25 @@ def assemble(names, nose, nstar, mass, target: Target, vs, mu=0.0, ramp_depth=No
         depth = 4 * a if ramp_depth is None else ramp_depth
         effects.append(FreeSurfaceRamp(target.R, wet, depth, start))
         breaks.append(start + depth)
+    return Assembly(tuple(effects), tuple(sorted(set(breaks))))
+
+
+def _assemble_cavity(names, nose, mass, vs, mu, sigma_n, embed):
+    if sigma_n is None:
+        raise ParameterError("scene", "level", "cavity", "a sigma_n(v) table for the cavity effect")
+    if {"static", "inertial", "free_surface_ramp"} & set(names):
+        raise ParameterError("scene", "effects", list(names), "cavity replaces static, inertial and the ramp")
+    surface = nose_surface(nose)
+    friction = mu if "friction" in names else 0.0
+    effects, breaks, start = [], [], 0.0
+    if "crater" in names:
+        start = 4 * nose.radius
+        full = lambda v: nose_force(surface, v, sigma_n, friction)
+        effects.append(Crater(float(cavity_crater_coefficient(mass, nose.radius, vs, full)), start))
+        breaks.append(start)
+    if embed:
+        breaks.append(start + nose.length)
+    effects.append(CavityStress(surface, sigma_n, friction, embed, start))
     return Assembly(tuple(effects), tuple(sorted(set(breaks))))
 
 

@@ -1,5 +1,4 @@
 # One rule per figure or table of the paper, named after it.
-FIG_SRC = [f"{SRC}figures/common.py", f"{SRC}tasks.py", f"{SRC}reference.py"]
 
 
 rule fig03:
@@ -104,7 +103,7 @@ rule fig09:
 
 
 rule fig15:
-    input: FIG_SRC, f"{SRC}figures/fig15.py", dop="results/scenes/fig15.csv", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/fig15.py", dop="results/scenes/fig15.csv", cavity="results/scenes/cavity/fig15.csv", reference=config["reference"],
     output: png="figures/fig15.png", csv="figures/fig15.csv",
     params: dpi=config["figures"]["dpi"],
     log: "results/logs/fig15.log",
@@ -112,7 +111,7 @@ rule fig15:
 
 
 rule table3:
-    input: FIG_SRC, f"{SRC}figures/tables.py", analytic="results/scenes/table3.csv", stated="results/scenes/table3_stated.csv", fit="results/calibration/table3_calc.json", reference=config["reference"],
+    input: FIG_SRC, f"{SRC}figures/tables.py", analytic="results/scenes/table3.csv", stated="results/scenes/table3_stated.csv", fit="results/calibration/table3_calc.json", cavity="results/scenes/cavity/table3.csv", reference=config["reference"],
     output: csv="figures/table3.csv",
     log: "results/logs/table3.log",
     script: "../scripts/run_task.py"

@@ -15,6 +15,9 @@ rule diff:
         sec22="results/scenes/sec22_450kg.csv",
         shares="results/resistance/shares.csv",
         fig15="results/scenes/fig15.csv",
+        cavity_table3="results/scenes/cavity/table3.csv",
+        cavity_do1="results/scenes/cavity/do1.csv",
+        cal_cavity="results/calibration/cavity_do1.json",
     output:
         diff="figures/diff.csv",
         summary="figures/diff_summary.md",

@@ -1,4 +1,7 @@
-"""Fig 15: Pd/d against striking velocity; paper's Table 3 and DO1 overlaid."""
+"""Fig 15: Pd/d against striking velocity, calculated (Eq 9) and simulated (cavity level).
+
+The paper's Table 3 cells and the DO1 experiment are overlaid.
+"""
 from __future__ import annotations
 
 import pandas as pd
@@ -13,20 +16,25 @@ LABELS = {"crh3": "CRH 3", "crh45": "CRH 4.5", "double_ogive": "double ogive", "
 @task
 def fig15(inputs, outputs, params):
     dop = pd.read_csv(inputs.dop)
+    cav = pd.read_csv(inputs.cavity).rename(columns={"cavity_dop": "dop"})
     refs = load_reference(inputs.reference)
     d = 2 * dop.radius.iloc[0]
     data = dop[["nose", "velocity", "nstar", "dop", "dop_over_d"]].assign(source="ours (Eq 9, S calibrated on DO1)")
+    sim = cav[["nose", "velocity", "nstar", "dop", "dop_over_d"]].assign(source="ours (cavity level, HJC)")
     paper = [{"nose": n, "velocity": v, "dop": refs[f"table3.{col}.{v}.{n}"].value,
               "dop_over_d": refs[f"table3.{col}.{v}.{n}"].value / d, "source": f"paper Table 3 {name}"}
              for v in VELOCITIES for n in TABLE3_NOSES for col, name in (("calc", "calculation"), ("sim", "simulation"))]
     exp = refs["fig15.do1_experiment"]
     paper.append({"nose": "double_ogive", "velocity": refs["table2.velocity"].value, "dop": refs["table2.dop"].value,
                   "dop_over_d": exp.value, "source": "paper DO1 experiment"})
-    table = pd.concat([data, pd.DataFrame(paper)], ignore_index=True)
+    table = pd.concat([data, sim, pd.DataFrame(paper)], ignore_index=True)
     write_csv(table, outputs.csv)
     fig, (ax,) = figure(1, 6.4, 4.4)
     for n, g in data.groupby("nose", sort=False):
         ax.plot(g.velocity, g.dop_over_d, color=color(n), label=f"{LABELS[n]} (ours, N* {g.nstar.iloc[0]:.4f})")
+    for n, g in sim.groupby("nose", sort=False):
+        ax.plot(g.velocity, g.dop_over_d, color=color(n), ls="--", lw=1)
+    ax.plot([], [], "k--", lw=1, label="dashed: ours, cavity level (HJC)")
     for row in paper:
         filled = "calculation" in row["source"]
         marker = "*" if "experiment" in row["source"] else "o"

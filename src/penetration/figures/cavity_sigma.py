@@ -1,0 +1,29 @@
+"""The cavity-expansion law sigma_n(v) of HJC concrete, with the Eq 7 forms beside it."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+from ..tasks import task, write_csv
+from .common import figure, save
+
+
+@task
+def cavity_sigma_n(inputs, outputs, params):
+    table = pd.read_csv(inputs.sigma)
+    cal = json.load(open(inputs.cal_do1))
+    write_csv(table, outputs.csv)
+    fig, (ax,) = figure(1, 6.0, 4.2)
+    for (label, g), c in zip(table.groupby("material", sort=False), ("tab:green", "tab:gray")):
+        ax.plot(g.velocity, g.sigma_n / 1e6, "o-", color=c, ms=3,
+                label=f"HJC cavity expansion, {label} (strength scale {g.strength_scale.iloc[0]:.3f})")
+    v = np.linspace(0, table.velocity.max(), 200)
+    rho, fc = params.rho, params.fc
+    for S, lab, ls in ((72 * (fc / 1e6) ** -0.5, "S fc + rho v^2, S = 72 fc^-0.5 (paper Eq 7)", "--"),
+                       (cal["S"], f"S fc + rho v^2, S = {cal['S']:.3f} (calibrated on DO1)", ":")):
+        ax.plot(v, (S * fc + rho * v * v) / 1e6, "k", ls=ls, lw=1, label=lab)
+    ax.set(xlabel="cavity-wall (normal) velocity (m/s)", ylabel="sigma_n (MPa)", title="Normal stress law on the nose")
+    ax.legend(fontsize=7)
+    save(fig, outputs.png, params.dpi)

@@ -1,0 +1,26 @@
+"""The cavity level with a known sigma_n law reproduces the closed form."""
+import numpy as np
+import pytest
+
+from penetration.cavity_level import SigmaTable, cavity_trajectory
+from penetration.dop import penetration_depth
+from penetration.geometry import DoubleOgive, Ogive
+from penetration.nstar import nstar
+from penetration.resistance import Target
+
+TG = Target(2440.0, 48e6, 6.69)
+
+
+@pytest.mark.parametrize("nose", [Ogive(3, 0.07), DoubleOgive(0.07, S1=0.8576, S2=0.42, a1=0.0397, a2=0.0638,
+                                                                alpha=0.245)], ids=lambda n: n.kind)
+@pytest.mark.parametrize("vs", [150.0, 835.0, 1500.0])
+def test_forrestal_law_as_a_table_gives_eq9(nose, vs):
+    v = np.linspace(0, 2000, 4001)
+    table = SigmaTable(v, TG.R + TG.rho * v**2, np.zeros(v.size, bool))
+    depth = cavity_trajectory(nose, 81.1, vs, table, rtol=1e-9).depth
+    assert depth == pytest.approx(float(penetration_depth(81.1, 0.07, nstar(nose), TG, vs)), rel=1e-5)
+
+
+def test_table_extends_beyond_its_range_linearly():
+    t = SigmaTable(np.array([0.0, 1.0, 2.0]), np.array([1.0, 2.0, 4.0]), np.zeros(3, bool))
+    assert t(3.0) == pytest.approx(6.0) and t(0.5) == pytest.approx(1.5)
