@@ -38,4 +38,5 @@ rule all:
         "figures/validation.csv",
         "figures/accuracy_trajectory.png",
         "figures/cavity_sigma_n.png",
+        "figures/accuracy_cavity.png",
         "figures/ablation_cavity.csv",

@@ -708,3 +708,36 @@ def cavity_ablation(inputs, outputs, params):
     frame = pd.DataFrame(rows)
     frame["dop_change_pct"] = 100 * (frame.dop / frame.dop.iloc[0] - 1)
     write_csv(frame, outputs.csv)
+
+
+@task
+def cavity_accuracy(inputs, outputs, params):
+    """Zone-count and time-step studies of the cavity solver; trajectory rtol study at the cavity level."""
+    import time
+    from .cavity import Controls, Mesh, expand
+    from .cavity_level import cavity_trajectory
+    from .scenes import load_json
+    refs = reference.load_reference(inputs.reference)
+    cfg = params.cfg
+    mat = _cavity_material(refs, cfg, load_json(inputs.cal)["strength_scale"])
+    rows = []
+    for study, runs in (("zones", [dict(zones=z) for z in params.zones]),
+                        ("cfl", [dict(cfl=c) for c in params.cfls])):
+        for run in runs:
+            mesh = Mesh(zones=run.get("zones", cfg["zones"]), cap=cfg["cap"])
+            ctl = Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=run.get("cfl", cfg["cfl"]))
+            t0 = time.perf_counter()
+            res = expand(mat, params.velocity, 0.07, mesh, ctl)
+            rows.append({"study": study, "setting": list(run.values())[0], "value": res.wall_stress,
+                         "wall_time_s": time.perf_counter() - t0})
+    table = read_sigma_table(inputs.sigma)
+    nose = read_inference(inputs.do1)["nose"]
+    for rtol in params.rtols:
+        t0 = time.perf_counter()
+        tr = cavity_trajectory(nose, 81.1, 835.0, table, tuple(cfg["effects"]), 0.0, rtol)
+        rows.append({"study": "trajectory_rtol", "setting": rtol, "value": tr.depth, "wall_time_s": time.perf_counter() - t0})
+    frame = pd.DataFrame(rows)
+    for study, g in frame.groupby("study"):
+        best = g.value.iloc[-1]
+        frame.loc[g.index, "rel_error_vs_finest"] = (g.value - best).abs() / abs(best)
+    write_csv(frame, outputs.csv)

@@ -65,3 +65,19 @@ rule cavity_sigma_n:
     params: dpi=config["figures"]["dpi"], rho=config["cavity_plot"]["rho"], fc=config["cavity_plot"]["fc"],
     log: "results/logs/cavity_sigma_n.log",
     script: "../scripts/run_task.py"
+
+
+rule cavity_accuracy:
+    input: CAVITY_SRC, do1="results/geometry/double_ogive_table4.json", cal="results/calibration/cavity_do1.json", sigma="results/cavity/sigma_n.csv", reference=config["reference"],
+    output: csv="results/bench/cavity_accuracy.csv",
+    params: cfg=config["cavity"], velocity=800.0, zones=[50, 100, 200, 400], cfls=[0.8, 0.5, 0.25, 0.125], rtols=[1e-3, 1e-5, 1e-7, 1e-9, 1e-11],
+    log: "results/logs/cavity_accuracy.log",
+    script: "../scripts/run_task.py"
+
+
+rule accuracy_cavity:
+    input: FIG_SRC, f"{SRC}figures/accuracy.py", csv="results/bench/cavity_accuracy.csv",
+    output: png="figures/accuracy_cavity.png", csv="figures/accuracy_cavity.csv",
+    params: dpi=config["figures"]["dpi"],
+    log: "results/logs/accuracy_cavity.log",
+    script: "../scripts/run_task.py"
