@@ -61,3 +61,13 @@ def test_resolve_and_velocity_range():
     assert v[0] == 400.0 and v[-1] == 1400.0 and np.allclose(np.diff(v), 25.0)
     sc = resolve("fig15", data, {"table4_do1": Ogive(4.5, 0.07)}, {"do1": {"S": 6.7}}, {})
     assert sc.target.S == 6.7 and sc.noses["minimum_nstar"].length == pytest.approx(Ogive(4.5, 0.07).length)
+
+
+def test_cavity_scene_effects_switch_hjc_terms():
+    from types import SimpleNamespace
+    from penetration.tasks import scene_material_switches
+    cfg = {"lock": "offset", "tension": "openradioss"}
+    full = SimpleNamespace(effects=("crater", "cavity", "strain_rate", "damage", "strength_cap"), material={})
+    assert scene_material_switches(full, cfg) == {}
+    bare = SimpleNamespace(effects=("nose_entry", "cavity"), material={"lock": "literal"})
+    assert scene_material_switches(bare, cfg) == {"rate": False, "damage": False, "smax": 1e6, "lock": "literal"}

@@ -31,6 +31,7 @@ class Scene:
     friction: float = 0.0
     ramp_depth: float | None = None
     provenance: dict = field(default_factory=dict)
+    material: dict = field(default_factory=dict)
 
 
 def read_scene(path, schema_path):
@@ -83,7 +84,8 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
     noses = {n: _nose(spec, radius, inferred_noses) for n, spec in data["noses"].items()}
     return Scene(name, data["projectile"]["mass"], radius, noses, Target(t["rho"], t["fc"], S),
                  velocities(data["velocities"]), data["level"], tuple(data["effects"]),
-                 data.get("friction", 0.0), data.get("ramp_depth"), prov)
+                 data.get("friction", 0.0), data.get("ramp_depth"), prov,
+                 {k: data[k] for k in ("lock", "tension") if k in data})
 
 
 def scene_name(path):

@@ -655,16 +655,45 @@ def read_sigma_table(path, material="calibrated"):
     return SigmaTable(t.velocity.to_numpy(), t.sigma_n.to_numpy(), t.extrapolated.to_numpy())
 
 
+MATERIAL_EFFECTS = ("strain_rate", "damage", "strength_cap")
+
+
+def scene_material_switches(sc, cfg):
+    """HJC switches a cavity-level scene asks for (effects listed are on)."""
+    listed = set(sc.effects)
+    over = {"rate": "strain_rate" in listed, "damage": "damage" in listed}
+    if "strength_cap" not in listed:
+        over["smax"] = 1e6
+    over.update({k: v for k, v in sc.material.items() if v != cfg[k]})
+    return {k: v for k, v in over.items() if v is not True}
+
+
 @task
 def scene_cavity(inputs, outputs, params):
-    """A cavity-level scene: depth and histories of every nose and velocity."""
-    from .cavity_level import cavity_trajectory
+    """A cavity-level scene: depth and histories of every nose and velocity.
+
+    Effects strain_rate, damage and strength_cap switch the HJC terms; a scene
+    that turns any of them off (or picks another lock or tension convention)
+    gets its own sigma_n table at the calibrated strength scale.
+    """
+    from .cavity_level import cavity_trajectory, sigma_table
+    from .scenes import load_json
     sc = _resolved(inputs.scene, inputs.schema, inputs)
-    table = read_sigma_table(inputs.sigma)
+    cfg = params.cfg
+    switches = scene_material_switches(sc, cfg)
+    if switches:
+        refs = reference.load_reference(inputs.reference)
+        mesh, controls = _cavity_settings(cfg)
+        mat = _cavity_material(refs, cfg, load_json(inputs.cal)["strength_scale"], **switches)
+        table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
+        print(f"own sigma_n table for switches {switches}")
+    else:
+        table = read_sigma_table(inputs.sigma)
+    effects = tuple(e for e in sc.effects if e not in MATERIAL_EFFECTS)
     rows, hist = [], []
     for name, nose in sc.noses.items():
         for v in sc.velocities:
-            tr = cavity_trajectory(nose, sc.mass, v, table, sc.effects, sc.friction, params.rtol)
+            tr = cavity_trajectory(nose, sc.mass, v, table, effects, sc.friction, params.rtol)
             rows.append({"scene": sc.name, "nose": name, "nstar": nstar(nose), "velocity": v, "cavity_dop": tr.depth,
                          "dop_over_d": tr.depth / (2 * nose.radius), "duration": tr.duration,
                          "peak_deceleration": float(tr.deceleration.max()),

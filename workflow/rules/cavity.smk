@@ -23,12 +23,15 @@ rule scene_cavity:
     input:
         CAVITY_SRC, DOP_SRC, **GEOMETRY_RESULTS,
         sigma="results/cavity/sigma_n.csv",
+        cal="results/calibration/cavity_do1.json",
+        reference=config["reference"],
         scene="workflow/scenes/cavity/{scene}.yaml", schema=SCENE_SCHEMA,
     output:
         dop="results/scenes/cavity/{scene}.csv",
         histories="results/scenes/cavity/{scene}_histories.csv",
     params:
         rtol=1.0e-7,
+        cfg=config["cavity"],
     log:
         "results/logs/scene_cavity_{scene}.log",
     script:
