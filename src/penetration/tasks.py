@@ -625,16 +625,20 @@ def calibrate_cavity_do1(inputs, outputs, params):
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
 
 
+def _calibrated_context(inputs, params):
+    """Reference values, cavity settings and the DO1-calibrated strength scale of a rule."""
+    from .scenes import load_json
+    cfg = params.cfg
+    mesh, controls = _cavity_settings(cfg)
+    return reference.load_reference(inputs.reference), cfg, mesh, controls, load_json(inputs.cal)["strength_scale"]
+
+
 @task
 def cavity_table(inputs, outputs, params):
     """sigma_n(v) of the calibrated HJC target (and the uncalibrated one) with solver statistics."""
     import time
     from .cavity_level import sigma_table
-    from .scenes import load_json
-    refs = reference.load_reference(inputs.reference)
-    cfg = params.cfg
-    mesh, controls = _cavity_settings(cfg)
-    scale = load_json(inputs.cal)["strength_scale"]
+    refs, cfg, mesh, controls, scale = _calibrated_context(inputs, params)
     rows = []
     for label, s in (("calibrated", scale), ("table1", 1.0)):
         t0 = time.perf_counter()
@@ -677,14 +681,11 @@ def scene_cavity(inputs, outputs, params):
     gets its own sigma_n table at the calibrated strength scale.
     """
     from .cavity_level import cavity_trajectory, sigma_table
-    from .scenes import load_json
     sc = _resolved(inputs.scene, inputs.schema, inputs)
-    cfg = params.cfg
-    switches = scene_material_switches(sc, cfg)
+    switches = scene_material_switches(sc, params.cfg)
     if switches:
-        refs = reference.load_reference(inputs.reference)
-        mesh, controls = _cavity_settings(cfg)
-        mat = _cavity_material(refs, cfg, load_json(inputs.cal)["strength_scale"], **switches)
+        refs, cfg, mesh, controls, scale = _calibrated_context(inputs, params)
+        mat = _cavity_material(refs, cfg, scale, **switches)
         table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
         print(f"own sigma_n table for switches {switches}")
     else:
@@ -709,11 +710,7 @@ def cavity_ablation(inputs, outputs, params):
     """Each effect of the cavity level switched off (or on) in turn: DOP change and cost for DO1."""
     import time
     from .cavity_level import cavity_trajectory, sigma_table
-    from .scenes import load_json
-    refs = reference.load_reference(inputs.reference)
-    cfg = params.cfg
-    mesh, controls = _cavity_settings(cfg)
-    scale = load_json(inputs.cal)["strength_scale"]
+    refs, cfg, mesh, controls, scale = _calibrated_context(inputs, params)
     nose = read_inference(inputs.do1)["nose"]
     mass, vs = refs["table2.mass"].si, refs["table2.velocity"].si
     base_effects = tuple(cfg["effects"])
@@ -745,10 +742,8 @@ def cavity_accuracy(inputs, outputs, params):
     import time
     from .cavity import Controls, Mesh, expand
     from .cavity_level import cavity_trajectory
-    from .scenes import load_json
-    refs = reference.load_reference(inputs.reference)
-    cfg = params.cfg
-    mat = _cavity_material(refs, cfg, load_json(inputs.cal)["strength_scale"])
+    refs, cfg, _, _, scale = _calibrated_context(inputs, params)
+    mat = _cavity_material(refs, cfg, scale)
     rows = []
     for study, runs in (("zones", [dict(zones=z) for z in params.zones]),
                         ("cfl", [dict(cfl=c) for c in params.cfls])):

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import yaml
 
-from nstar_speed import machine
+from nstar_speed import machine, timed
 from penetration.cavity import Controls, Mesh, expand, stress_table
 from penetration.hjc import HJC
 
@@ -23,15 +23,9 @@ def main():
     ctl = Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"])
     print(f"{len(v)} velocities from {min(v):g} to {max(v):g} m/s")
     for zones in (50, cfg["zones"], 200):
-        best = min(_timed(lambda: stress_table(HJC(), v, 0.07, Mesh(zones=zones, cap=cfg["cap"]), ctl))
+        best = min(timed(lambda: stress_table(HJC(), v, 0.07, Mesh(zones=zones, cap=cfg["cap"]), ctl))
                    for _ in range(2))
         print(f"zones {zones:4d}: table in {best:.2f} s")
-
-
-def _timed(fn):
-    t0 = time.perf_counter()
-    fn()
-    return time.perf_counter() - t0
 
 
 if __name__ == "__main__":

@@ -15,7 +15,7 @@ from penetration.nstar import nstar
 from penetration.resistance import Target
 from penetration.trajectory import assemble, integrate
 
-from nstar_speed import machine
+from nstar_speed import machine, timed
 
 
 def main():
@@ -26,7 +26,7 @@ def main():
     v = rng.uniform(100, 2000, n)
     m = rng.uniform(10, 500, n)
     ns = rng.uniform(0.04, 0.5, n)
-    best = min(_timed(lambda: penetration_depth(m, 0.07, ns, tg, v)) for _ in range(5))
+    best = min(timed(lambda: penetration_depth(m, 0.07, ns, tg, v)) for _ in range(5))
     print(f"Eq 9 vectorised: {n / best:.3g} shots/s ({1e3 * best:.1f} ms for {n} shots)")
     nose = DoubleOgive(0.07, S1=0.8576, S2=0.42, a1=0.0397, a2=0.0638, alpha=0.245)
     nn = nstar(nose)
@@ -41,12 +41,6 @@ def main():
             times.append(time.perf_counter() - t0)
             depth = tr.depth
         print(f"{rtol:8.0e} {1e3 * np.median(times):15.2f} {abs(depth - exact) / exact:15.2e}")
-
-
-def _timed(fn):
-    t0 = time.perf_counter()
-    fn()
-    return time.perf_counter() - t0
 
 
 if __name__ == "__main__":

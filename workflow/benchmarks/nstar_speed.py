@@ -25,6 +25,13 @@ def machine():
     return f"{platform.platform()}, Python {platform.python_version()}, {os.cpu_count()} cores, {cpu}"
 
 
+def timed(fn):
+    """Wall time of one call of fn (s)."""
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
 def median_time(build, repeat=400):
     times = []
     for _ in range(repeat):
