@@ -39,4 +39,5 @@ rule all:
         "figures/accuracy_trajectory.png",
         "figures/cavity_sigma_n.png",
         "figures/accuracy_cavity.png",
+        "figures/do1_family_sensitivity.csv",
         "figures/ablation_cavity.csv",

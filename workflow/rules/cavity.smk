@@ -84,3 +84,11 @@ rule accuracy_cavity:
     params: dpi=config["figures"]["dpi"],
     log: "results/logs/accuracy_cavity.log",
     script: "../scripts/run_task.py"
+
+
+rule do1_family_sensitivity:
+    input: CAVITY_SRC, family="results/geometry/double_ogive_table4_family.csv", sigma="results/cavity/sigma_n.csv",
+    output: csv="figures/do1_family_sensitivity.csv",
+    params: velocities=[500.0, 835.0, 1200.0], mass=81.1, effects=["crater", "cavity"],
+    log: "results/logs/do1_family_sensitivity.log",
+    script: "../scripts/run_task.py"
