@@ -128,18 +128,19 @@ def nose_surface(nose) -> NoseSurface:
     return NoseSurface(*_nodes(nose.segments), tuple(nose.segments), float(nose.length))
 
 
-def nose_force(surface: NoseSurface, v, sigma_n, mu=0.0, depth=None):
+def nose_force(surface: NoseSurface, v, sigma_n, mu=0.0, depth=None, normal=True):
     """Axial force on the wetted nose, F = 2 pi int y sigma_n (dy + mu dx).
 
     sigma_n(vn) is the normal stress at normal velocity vn = V sin(beta)
     (Eq 4 form S fc + rho vn^2, or a tabulated cavity-expansion law);
     ``depth`` limits the load to the part of the nose with x <= depth (the
-    nose entering the target), integrated exactly up to the cut. Scalar v.
+    nose entering the target), integrated exactly up to the cut; ``normal``
+    False leaves out the normal-stress term (friction share only). Scalar v.
     """
     sb, wn, wf = surface.sin_beta, surface.w_normal, surface.w_friction
     if depth is not None and depth < surface.length:
         sb, wn, wf = _nodes(surface.segments, depth)
-    return float(np.dot(sigma_n(v * sb), wn + mu * wf))
+    return float(np.dot(sigma_n(v * sb), (wn if normal else 0.0) + mu * wf))
 
 
 def forrestal_stress(target: Target):

@@ -97,8 +97,7 @@ class Friction:
             return 0.0
         sig = lambda vn: self.target.R + self.target.rho * vn * vn
         depth = z - self.start if self.embed else None
-        normal_only = nose_force(self.surface, v, sig, 0.0, depth)
-        return nose_force(self.surface, v, sig, self.mu, depth) - normal_only
+        return nose_force(self.surface, v, sig, self.mu, depth, normal=False)
 
 
 @dataclass(frozen=True)
