@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from penetration.geometry import ParameterError
-from penetration.hjc import HJC, PointState, drive, eos, fracture_strain, loading_pressure, strength
+from penetration.hjc import HJC, PointState, drive, fracture_strain, loading_pressure, strength
 
 MAT = HJC()
 Q = MAT.as_array()

@@ -1,6 +1,4 @@
 """Inference rules: they meet their targets, report families, and fail clearly."""
-import math
-
 import numpy as np
 import pytest
 

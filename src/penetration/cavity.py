@@ -177,7 +177,6 @@ def _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, a_end, cfl, cq,
             u[i] += dt * (grad + hoop) / rbar
         u[0] = V
         u[n] = 0.0
-        rate = 0.0
         for i in range(n + 1):
             r[i] += dt * u[i]
         for j in range(n):
@@ -186,8 +185,7 @@ def _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, a_end, cfl, cq,
             dr = r[j + 1] - r[j]
             du = u[j + 1] - u[j]
             de_r = du / dr * dt
-            de_t = 0.5 * (u[j + 1] + u[j]) / (0.5 * (r[j + 1] + r[j])) * dt
-            de_v = math.log(rho[j] / rho_new)
+            de_v = math.log(rho[j] / rho_new)  # exact volume change; the hoop strain follows from it
             rate = abs(de_r - de_v / 3.0) / dt
             rho[j] = rho_new
             _stress_update(kind, q, j, rho_new / rho0 - 1.0, de_r, de_v, rate, sr, p, mumax, mup, dmg)

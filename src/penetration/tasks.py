@@ -319,19 +319,14 @@ def calibrate_do1(inputs, outputs, params):
     nose = sc.noses["double_ogive"]
     depth, vs = refs[params.depth].si, refs[params.velocity].si
     fit = calibrate_strength(sc.mass, sc.radius, nstar(nose), sc.target.rho, sc.target.fc, vs, depth)
-    stated = float(inference_free_S(sc))
+    from .resistance import strength_factor
+    stated = float(strength_factor(sc.target.fc, "li_chen"))
     write_json({"calibration": "do1", "fitted_quantity": "S, static resistance factor (A of Eq 6; S fc is the static resistance)",
                 "data": {"mass": sc.mass, "radius": sc.radius, "nstar": nstar(nose), "rho": sc.target.rho,
                          "fc": sc.target.fc, "vs": vs, "measured_depth": depth,
                          "sources": [refs[params.depth].source, refs[params.velocity].source]},
                 "model": "Eq 9 (Forrestal crater + tunnel), nose inferred from Table 4",
                 "S_stated_li_chen": stated, "S_ratio_to_stated": fit["S"] / stated, **fit}, outputs.json)
-
-
-def inference_free_S(scene):
-    """S = 72 fc^-0.5 of the paper's text, for comparison with calibrations."""
-    from .resistance import strength_factor
-    return strength_factor(scene.target.fc, "li_chen")
 
 
 @task
@@ -567,25 +562,26 @@ def hjc_from_reference(refs, **switches):
 @task
 def hjc_eos_paths(inputs, outputs, params):
     """Hydrostatic load-unload paths of the HJC equation of state (Fig 10 data)."""
-    import math
-    from .hjc import PointState, drive
+    from .hjc import PointState
     refs = reference.load_reference(inputs.reference)
     rows = []
     for lock in ("offset", "literal"):
         mat = hjc_from_reference(refs, lock=lock)
-        virgin = _hydro_path(drive, mat, PointState.new(), params.mu_top, params.steps)
+        virgin = _hydro_path(mat, PointState.new(), params.mu_top, params.steps)
         rows.append(pd.DataFrame({"lock": lock, "path": "loading", "mu": virgin["mu"], "p": virgin["p"]}))
         for mu_max in params.unload_from:
             st = PointState.new()
-            _hydro_path(drive, mat, st, mu_max, params.steps)
-            back = _hydro_path(drive, mat, st, params.unload_to, params.steps)
+            _hydro_path(mat, st, mu_max, params.steps)
+            back = _hydro_path(mat, st, params.unload_to, params.steps)
             rows.append(pd.DataFrame({"lock": lock, "path": f"unload from {mu_max:g}", "mu": back["mu"],
                                       "p": back["p"]}))
     write_csv(pd.concat(rows, ignore_index=True), outputs.csv)
 
 
-def _hydro_path(drive, mat, state, mu_target, steps):
+def _hydro_path(mat, state, mu_target, steps):
+    """Drive a point hydrostatically from its current volume to mu_target."""
     import math
+    from .hjc import drive
     de = (-math.log(1 + mu_target) - state.strain[:3].sum()) / steps / 3
     out, _ = drive(mat, np.tile([de, de, de, 0, 0, 0], (steps, 1)), state=state)
     return out

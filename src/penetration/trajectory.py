@@ -26,7 +26,7 @@ from scipy.integrate import solve_ivp
 
 from .geometry import ParameterError
 from .nstar import cumulative_nstar
-from .resistance import NoseSurface, Target, crater_coefficient, nose_force, nose_surface
+from .resistance import NoseSurface, Target, crater_coefficient, forrestal_stress, nose_force, nose_surface
 
 EFFECTS = ("crater", "nose_entry", "static", "inertial", "friction", "free_surface_ramp", "cavity")
 
@@ -85,19 +85,25 @@ class Inertial:
 
 
 @dataclass(frozen=True)
-class Friction:
-    mu: float
+class SurfaceLoad:
+    """sigma_n(v_n) integrated over the (wetted) nose surface, Eq 2.
+
+    With ``normal`` it is the whole surface force (the cavity level's
+    tabulated law, friction coefficient ``mu`` included); without, only the
+    friction share mu sigma_n (the ``friction`` effect beside Eq 7's terms).
+    """
     surface: NoseSurface
-    target: Target
+    sigma_n: object
+    mu: float
     embed: bool
     start: float = 0.0
+    normal: bool = True
 
     def force(self, z, v):
         if z < self.start:
             return 0.0
-        sig = lambda vn: self.target.R + self.target.rho * vn * vn
         depth = z - self.start if self.embed else None
-        return nose_force(self.surface, v, sig, self.mu, depth, normal=False)
+        return nose_force(self.surface, v, self.sigma_n, self.mu, depth, self.normal)
 
 
 @dataclass(frozen=True)
@@ -113,21 +119,6 @@ class FreeSurfaceRamp:
             return 0.0
         s = z - self.start
         return -self.R * self.wet.at(s)[0] * (1.0 - s / self.depth)
-
-
-@dataclass(frozen=True)
-class CavityStress:
-    """Tabulated normal stress sigma_n(v_n) integrated over the wetted nose (Eq 2)."""
-    surface: NoseSurface
-    sigma_n: object
-    mu: float
-    embed: bool
-    start: float = 0.0
-
-    def force(self, z, v):
-        if z < self.start:
-            return 0.0
-        return nose_force(self.surface, v, self.sigma_n, self.mu, z - self.start if self.embed else None)
 
 
 def cavity_crater_coefficient(mass, radius, vs, full_force):
@@ -181,7 +172,7 @@ def assemble(names, nose, nstar, mass, target: Target, vs, mu=0.0, ramp_depth=No
     if "inertial" in names:
         effects.append(Inertial(target.rho, wet, start))
     if "friction" in names and mu > 0:
-        effects.append(Friction(mu, nose_surface(nose), target, embed, start))
+        effects.append(SurfaceLoad(nose_surface(nose), forrestal_stress(target), mu, embed, start, normal=False))
     if "free_surface_ramp" in names:
         depth = 4 * a if ramp_depth is None else ramp_depth
         effects.append(FreeSurfaceRamp(target.R, wet, depth, start))
@@ -204,7 +195,7 @@ def _assemble_cavity(names, nose, mass, vs, mu, sigma_n, embed):
         breaks.append(start)
     if embed:
         breaks.append(start + nose.length)
-    effects.append(CavityStress(surface, sigma_n, friction, embed, start))
+    effects.append(SurfaceLoad(surface, sigma_n, friction, embed, start))
     return Assembly(tuple(effects), tuple(sorted(set(breaks))))
 
 

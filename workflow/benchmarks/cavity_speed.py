@@ -5,7 +5,6 @@ Prints the machine, then the wall time of the whole table (the velocities of
 workflow/config.yaml, 2 threads) for Table 1 HJC at several zone counts, after
 one warm-up run that compiles the kernels.
 """
-import time
 from pathlib import Path
 
 import yaml
