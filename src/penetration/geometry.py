@@ -586,6 +586,11 @@ def scaled(nose, factor: float):
     return dataclasses.replace(nose, **{f: mul(getattr(nose, f)) for f in LENGTH_FIELDS[nose.kind]})
 
 
+def with_radius(nose, radius: float):
+    """The same nose shape scaled to shank radius ``radius``."""
+    return scaled(nose, radius / nose.radius)
+
+
 def make_nose(kind: str, **params):
     """Build a registered nose by kind name from keyword parameters."""
     if kind not in NOSES:

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from . import config
-from .geometry import Cone, Flat, MinimumNstar, Ogive, scaled
+from .geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from .resistance import Target, strength_factor
 
 
@@ -48,8 +48,7 @@ def velocities(spec):
 
 def _nose(spec, radius, inferred):
     if "inferred" in spec:
-        nose = inferred[spec["inferred"]]
-        return scaled(nose, radius / nose.radius)
+        return with_radius(inferred[spec["inferred"]], radius)
     kind = spec["kind"]
     if kind == "ogive":
         return Ogive(spec["psi"], radius, spec.get("tip_radius", 0.0))

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from . import inference, reference
-from .geometry import Cone, MinimumNstar, Ogive, make_nose
+from .geometry import Cone, MinimumNstar, Ogive, make_nose, with_radius
 from .nstar import cumulative_nstar, nstar, shape_rate
 
 TASKS = {}
@@ -395,13 +395,12 @@ def _histories(sc, radius_case, rtol):
 @task
 def scene(inputs, outputs, params):
     """DOP of every nose and velocity of a scene; histories at trajectory level."""
-    import dataclasses as dc
     sc = _resolved(inputs.scene, inputs.schema, inputs)
     variants = [("chosen", sc)]
     if "radius" in sc.provenance:
         from .scenes import load_json
         lo, hi = load_json(inputs.diameter)["interval"]
-        variants += [(case, dc.replace(sc, radius=0.5 * d, noses={k: scaled_nose(n, 0.5 * d) for k, n in sc.noses.items()}))
+        variants += [(case, dataclasses.replace(sc, radius=0.5 * d, noses={k: with_radius(n, 0.5 * d) for k, n in sc.noses.items()}))
                      for case, d in (("interval_low", lo), ("interval_high", hi))]
     rows, hist, finals = [], [], []
     for case, s in variants:
@@ -415,11 +414,6 @@ def scene(inputs, outputs, params):
         table = table.merge(pd.DataFrame(finals), on=["nose", "radius_case", "velocity"], how="left")
     write_csv(table, outputs.dop)
     write_csv(pd.concat(hist, ignore_index=True) if hist else pd.DataFrame(columns=["nose"]), outputs.histories)
-
-
-def scaled_nose(nose, radius):
-    from .geometry import scaled
-    return scaled(nose, radius / nose.radius)
 
 
 @task
