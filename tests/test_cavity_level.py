@@ -21,6 +21,28 @@ def test_forrestal_law_as_a_table_gives_eq9(nose, vs):
     assert depth == pytest.approx(float(penetration_depth(81.1, 0.07, nstar(nose), TG, vs)), rel=1e-5)
 
 
-def test_table_extends_beyond_its_range_linearly():
+def test_table_is_exact_for_forrestal_form_on_coarse_nodes():
+    """PCHIP in v^2 reproduces A + B v^2 between and beyond sparse nodes."""
+    v = np.array([0.0, 200.0, 700.0, 1000.0, 2000.0])
+    table = SigmaTable(v, 3e8 + 1.1 * 2440 * v**2, np.zeros(v.size, bool))
+    probe = np.linspace(0.0, 3000.0, 301)
+    np.testing.assert_allclose(table(probe), 3e8 + 1.1 * 2440 * probe**2, rtol=1e-12)
+
+
+def test_table_extends_beyond_its_range_linearly_in_v_squared():
     t = SigmaTable(np.array([0.0, 1.0, 2.0]), np.array([1.0, 2.0, 4.0]), np.zeros(3, bool))
-    assert t(3.0) == pytest.approx(6.0) and t(0.5) == pytest.approx(1.5)
+    assert t(3.0) == pytest.approx(4.0 + (2.0 / 3.0) * 5.0)
+    assert t(1.0) == pytest.approx(2.0) and t(2.0) == pytest.approx(4.0)
+
+
+def test_table_is_monotone_between_nodes():
+    v = np.array([0.0, 50.0, 100.0, 300.0, 800.0, 2000.0])
+    s = np.array([2.7e8, 2.75e8, 3.3e8, 6.6e8, 2.1e9, 1.06e10])  # shape of the calibrated HJC table
+    probe = np.linspace(0, 2000, 4001)
+    assert np.all(np.diff(SigmaTable(v, s, np.zeros(v.size, bool))(probe)) >= 0)
+
+
+@pytest.mark.parametrize("v", [np.array([0.0]), np.array([0.0, 2.0, 1.0]), np.array([-1.0, 1.0])])
+def test_table_rejects_bad_velocities(v):
+    with pytest.raises(ValueError, match="strictly increasing"):
+        SigmaTable(v, np.ones(v.size), np.zeros(v.size, bool))

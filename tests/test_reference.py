@@ -58,3 +58,26 @@ def test_committed_diff_has_the_contract():
     assert tuple(rows[0]) == COLUMNS
     assert {r["status"] for r in rows} <= set(STATUSES)
     assert {r["item"] for r in rows} <= {f"table{i}" for i in range(1, 5)} | {f"fig{i:02d}" for i in range(1, 17)} | {"text"}
+
+
+def _shot_refs(depth_at_shot_ratio):
+    """Table 3 double-ogive row on a straight line in v; the shot at ratio x the line's 835 m/s value."""
+    from penetration.reference import table3_sim_at_shot
+    line = lambda v: 0.01 * v - 3.0
+    R = {f"table3.sim.{v}.double_ogive": ref(line(v), "m") for v in (500, 800, 1000, 1200)}
+    R["table2.velocity"] = ref(835.0, "m/s")
+    R["table2.dop"] = Ref("table2.dop", "table2", "dop", "DO1", 5.35 * depth_at_shot_ratio, "m", "eq", 0.05, "s", "")
+    return table3_sim_at_shot(R)
+
+
+def test_table3_row_interpolated_at_the_shot():
+    # a monotone cubic reproduces a straight line; 835 m/s -> 5.35 m
+    assert _shot_refs(1.0).ours == pytest.approx(5.35, rel=1e-12) and _shot_refs(1.0).status == "reproduced"
+    assert _shot_refs(1.0 / 1.06).status == "paper-inconsistent"
+
+
+def test_paper_table3_row_sits_above_the_shot():
+    from penetration.reference import table3_sim_at_shot
+    row = table3_sim_at_shot(load_reference(REF))
+    # linear interpolation between 800 and 1000 m/s gives 5.307 m, a chord above the convex row
+    assert 5.27 < row.ours < 5.307 and row.rel_err == pytest.approx(0.037, abs=0.005)

@@ -73,7 +73,8 @@ rule cavity_sigma_n:
 rule cavity_accuracy:
     input: CAVITY_SRC, do1="results/geometry/double_ogive_table4.json", cal="results/calibration/cavity_do1.json", sigma="results/cavity/sigma_n.csv", reference=config["reference"],
     output: csv="results/bench/cavity_accuracy.csv",
-    params: cfg=config["cavity"], velocity=800.0, zones=[50, 100, 200, 400], cfls=[0.8, 0.5, 0.25, 0.125], rtols=[1e-3, 1e-5, 1e-7, 1e-9, 1e-11],
+    params: cfg=config["cavity"], velocity=800.0, zones=[50, 100, 200, 400], cfls=[0.8, 0.5, 0.25, 0.125],
+            table_nodes=[5, 9, 17, 33, 65], table_span=[50.0, 2000.0], rtols=[1e-3, 1e-5, 1e-7, 1e-9, 1e-11],
     log: "results/logs/cavity_accuracy.log",
     script: "../scripts/run_task.py"
 
@@ -83,6 +84,18 @@ rule accuracy_cavity:
     output: png="figures/accuracy_cavity.png", csv="figures/accuracy_cavity.csv",
     params: dpi=config["figures"]["dpi"],
     log: "results/logs/accuracy_cavity.log",
+    script: "../scripts/run_task.py"
+
+
+rule cavity_table3_convergence:
+    input:
+        CAVITY_SRC, DOP_SRC, **GEOMETRY_RESULTS,
+        reference=config["reference"],
+        scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
+    output: csv="figures/cavity_table3_convergence.csv",
+    params: cfg=config["cavity"], zones=[50, 100, 200],
+            depth=config["calibration"]["do1"]["depth"], velocity=config["calibration"]["do1"]["velocity"],
+    log: "results/logs/cavity_table3_convergence.log",
     script: "../scripts/run_task.py"
 
 

@@ -29,7 +29,7 @@ rule diff:
 
 rule reproduce_check:
     input:
-        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES + ["validation", "do1_family_sensitivity"]),
+        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES + ["validation", "do1_family_sensitivity", "cavity_table3_convergence"]),
         diff="figures/diff.csv",
     output:
         report="results/check/reproduce_check.txt",

@@ -28,14 +28,20 @@ def accuracy_trajectory(inputs, outputs, params):
 def accuracy_cavity(inputs, outputs, params):
     data = pd.read_csv(inputs.csv)
     write_csv(data, outputs.csv)
-    fig, axes = figure(3, 4.2, 3.6)
-    titles = {"zones": "cavity solver: zones", "cfl": "cavity solver: CFL number",
-              "trajectory_rtol": "cavity-level trajectory: rtol"}
-    for ax, (study, g) in zip(axes, data.groupby("study", sort=False)):
-        g = g.iloc[:-1]  # the finest run is the reference
-        ax.loglog(g.wall_time_s * 1e3, g.rel_error_vs_finest.clip(lower=1e-12), "o-")
-        for r in g.itertuples():
-            ax.annotate(f"{r.setting:g}", (r.wall_time_s * 1e3, max(r.rel_error_vs_finest, 1e-12)), fontsize=6,
-                        textcoords="offset points", xytext=(3, 3))
-        ax.set(xlabel="wall time (ms)", ylabel="relative error vs finest", title=titles.get(study, study))
+    panels = {"zones": "cavity solver: zones", "cfl": "cavity solver: CFL number",
+              "table_nodes": "sigma_n table: nodes (DO1 depth)", "trajectory_rtol": "cavity-level trajectory: rtol"}
+    fig, axes = figure(len(panels), 4.2, 3.6)
+    data["panel"] = data.study.str.replace(r"_(pchip_v2|linear_v)$", "", regex=True)
+    for ax, (panel, title) in zip(axes, panels.items()):
+        for study, g in data[data.panel == panel].groupby("study", sort=False):
+            if not study.endswith("linear_v"):
+                g = g.iloc[:-1]  # the finest run is the reference
+            label = study[len(panel) + 1:] or None
+            ax.loglog(g.wall_time_s * 1e3, g.rel_error_vs_finest.clip(lower=1e-12), "o-", label=label)
+            for r in g.itertuples():
+                ax.annotate(f"{r.setting:g}", (r.wall_time_s * 1e3, max(r.rel_error_vs_finest, 1e-12)), fontsize=6,
+                            textcoords="offset points", xytext=(3, 3))
+            if label:
+                ax.legend(fontsize=7)
+        ax.set(xlabel="wall time (ms)", ylabel="relative error vs finest", title=title)
     save(fig, outputs.png, params.dpi)
