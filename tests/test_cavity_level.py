@@ -46,3 +46,32 @@ def test_table_is_monotone_between_nodes():
 def test_table_rejects_bad_velocities(v):
     with pytest.raises(ValueError, match="strictly increasing"):
         SigmaTable(v, np.ones(v.size), np.zeros(v.size, bool))
+
+
+@pytest.fixture(scope="module")
+def hjc_table():
+    """sigma_n(v) of Table 1 HJC concrete at a strength scale near the calibrated one."""
+    import dataclasses
+    from pathlib import Path
+    from penetration.cavity_level import sigma_table
+    from penetration.reference import load_reference
+    from penetration.tasks import hjc_from_reference
+    refs = load_reference(Path(__file__).resolve().parents[1] / "workflow/reference/paper_values.csv")
+    mat = dataclasses.replace(hjc_from_reference(refs), strength_scale=0.6)
+    v = [50.0, 100.0, 200.0, 400.0, 800.0, 1200.0, 2000.0]
+    return sigma_table(mat, v, 0.07)[0]
+
+
+@pytest.mark.parametrize("effects", [("crater", "cavity"), ("nose_entry", "cavity")])
+@pytest.mark.parametrize("nose", [Ogive(3, 0.07), Ogive(0.5, 0.07), DoubleOgive(0.07, S1=0.8576, S2=0.42, a1=0.0397,
+                                                                                 a2=0.0638, alpha=0.245)],
+                         ids=lambda n: f"{n.kind}")
+def test_hjc_level_finite_monotone_and_energy_closed_from_30_to_2500(hjc_table, nose, effects):
+    """Hard cases 8 and 9: stops in the crater phase, extrapolation above the table, blunt nose."""
+    depths = []
+    for vs in (30.0, 100.0, 250.0, 500.0, 1000.0, 1500.0, 2000.0, 2500.0):
+        tr = cavity_trajectory(nose, 81.1, vs, hjc_table, effects, rtol=1e-8)
+        assert np.isfinite(tr.depth) and tr.depth > 0
+        assert tr.work == pytest.approx(0.5 * 81.1 * vs**2, rel=1e-5)
+        depths.append(tr.depth)
+    assert np.all(np.diff(depths) > 0)
