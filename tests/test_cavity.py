@@ -64,3 +64,13 @@ def test_cycles_converge_and_table_is_monotone():
 def test_bad_velocity():
     with pytest.raises(ValueError, match="V > 0"):
         expand(HJC(), 0.0)
+
+
+def test_erosion_strain_weakens_the_wall_monotonically_and_vanishes_when_large():
+    import dataclasses
+    base = HJC(strength_scale=0.6)
+    ref = expand(base, 500.0, mesh=Mesh(zones=80)).wall_stress
+    walls = [expand(dataclasses.replace(base, erosion_strain=fs), 500.0, mesh=Mesh(zones=80)).wall_stress
+             for fs in (1e3, 1.0, 0.3, 0.1)]
+    assert walls[0] == pytest.approx(ref, rel=1e-12)  # never reached: same as no erosion
+    assert np.all(np.diff(walls) < 0) and walls[-1] < 0.8 * ref

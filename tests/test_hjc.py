@@ -172,3 +172,25 @@ def test_bad_parameters():
         HJC(lock="glued")
     with pytest.raises(ParameterError, match="pc"):
         HJC(pc=-1.0)
+
+
+def test_erosion_strain_removes_deviatoric_stress_and_keeps_pressure():
+    """Confined shear: identical to the uneroded point until eps_p reaches erosion_strain, then seq = 0."""
+    import dataclasses
+    eroding = dataclasses.replace(MAT, erosion_strain=0.02)
+    paths = []
+    for m in (MAT, eroding):
+        _, st = hydro(0.05, material=m)
+        paths.append(drive(m, np.tile([0, 0, 0, 2e-5, 0, 0], (3000, 1)), state=st)[0])
+    plain, ero = paths
+    before = ero["eps_p"] < 0.02
+    assert before.sum() > 10 and (~before).sum() > 10
+    np.testing.assert_allclose(ero["seq"][before], plain["seq"][before], rtol=1e-12)
+    after = np.flatnonzero(~before)[1:]  # the step that crosses the limit still yields at the surface
+    assert np.all(ero["seq"][after] <= 1e-6 * plain["seq"][after])
+    np.testing.assert_allclose(ero["p"], plain["p"], rtol=1e-12)  # pressure depends on mu only
+
+
+def test_erosion_strain_validated():
+    with pytest.raises(ParameterError, match="erosion_strain"):
+        HJC(erosion_strain=0.0)

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from .hjc import HJC, I_G, I_K1, I_KE, eos, fracture_strain, strength, unloading_modulus
+from .hjc import HJC, I_G, I_K1, I_KE, eos, fracture_strain, unloading_modulus, yield_stress
 
 ELASTIC, EPP, MOHR_COULOMB, HJC_KIND = 0, 1, 2, 3
 
@@ -98,7 +98,7 @@ def material_of(model):
 
 # ------------------------------------------------------------------ kernel
 @njit(cache=True)
-def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg):
+def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg, eps):
     """Update deviatoric s_r (s_theta = -s_r/2), pressure and history of cell j."""
     if kind == HJC_KIND:
         G = q[I_G]
@@ -108,7 +108,7 @@ def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg):
     if kind == HJC_KIND:
         pn, mumax[j], mup_new = eos(mu, mumax[j], q)
         pn = max(pn, -q[7] * (1.0 - dmg[j]))  # I_T = 7
-        sy = strength(pn, dmg[j], rate, q)
+        sy = yield_stress(pn, dmg[j], eps[j], rate, q)
     else:
         pn = q[2] * mu / (1.0 + mu)  # K (1 - rho0/rho), the Forrestal-Luk equation of state
         mup_new = 0.0
@@ -123,6 +123,7 @@ def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg):
     if seq > sy:
         dep = (seq - sy) / (3.0 * G)
         sr[j] *= sy / seq
+    eps[j] += dep
     if kind == HJC_KIND:
         dmu = max(mup_new - mup[j], 0.0)
         mup[j] = mup_new
@@ -144,7 +145,7 @@ def _sound_speed(kind, q, mu, mumax, rho):
 
 
 @njit(cache=True, nogil=True)
-def _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, a_end, cfl, cq, cl):
+def _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, eps, a_end, cfl, cq, cl):
     """Lagrangian expansion until the wall node reaches a_end.
 
     Returns (time-averaged wall stress over the second half, steps).
@@ -188,7 +189,7 @@ def _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, a_end, cfl, cq,
             de_v = math.log(rho[j] / rho_new)  # exact volume change; the hoop strain follows from it
             rate = abs(de_r - de_v / 3.0) / dt
             rho[j] = rho_new
-            _stress_update(kind, q, j, rho_new / rho0 - 1.0, de_r, de_v, rate, sr, p, mumax, mup, dmg)
+            _stress_update(kind, q, j, rho_new / rho0 - 1.0, de_r, de_v, rate, sr, p, mumax, mup, dmg, eps)
             if du < 0.0:
                 c = _sound_speed(kind, q, rho_new / rho0 - 1.0, mumax[j], rho_new)
                 qv[j] = rho_new * (cq * cq * du * du + cl * c * abs(du))
@@ -217,7 +218,7 @@ def _remap(r_old, a_old, fields_cell, u_node, r_new, a_new):
     return cells, np.interp(xn, xo, u_node)
 
 
-FIELDS = ("rho", "s_r", "p", "mu_max", "mu_p", "D")
+FIELDS = ("rho", "s_r", "p", "mu_max", "mu_p", "D", "eps_p")
 
 
 def expand(model, V, radius=0.07, mesh: Mesh = Mesh(), controls: Controls = Controls(), start=None) -> Result:
@@ -237,18 +238,18 @@ def expand(model, V, radius=0.07, mesh: Mesh = Mesh(), controls: Controls = Cont
     u = np.zeros(n + 1)
     u[0] = V
     rho = np.full(n, rho0)
-    sr, p, mumax, mup, dmg = (np.zeros(n) for _ in range(5))
+    sr, p, mumax, mup, dmg, eps = (np.zeros(n) for _ in range(6))
     if start is not None:
         xc = 0.5 * (r[1:] + r[:-1]) / a0
         ahead = {f: 0.0 for f in FIELDS}
         ahead["rho"] = rho0  # undisturbed beyond the old profile
-        rho, sr, p, mumax, mup, dmg = (np.interp(xc, start["xi"], start[f], right=ahead[f]) for f in FIELDS)
+        rho, sr, p, mumax, mup, dmg, eps = (np.interp(xc, start["xi"], start[f], right=ahead[f]) for f in FIELDS)
         u = np.interp(r / a0, start["xi_node"], start["u_over_V"] * V, right=0.0)
         u[0] = V
     res = Result(float("nan"))
     for cycle in range(controls.max_cycles):
         mass = rho * (r[1:] ** 3 - r[:-1] ** 3) / 3.0
-        w, steps = _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, radius, controls.cfl,
+        w, steps = _cycle(kind, q, rho0, V, r, u, mass, sr, p, mumax, mup, dmg, eps, radius, controls.cfl,
                           controls.q_quad, controls.q_lin)
         res.steps += steps
         res.history.append(w)
@@ -257,14 +258,14 @@ def expand(model, V, radius=0.07, mesh: Mesh = Mesh(), controls: Controls = Cont
             res.converged = True
             break
         r_new = _initial_mesh(mesh, xi_max, a0)
-        (rho, sr, p, mumax, mup, dmg), u = _remap(r, r[0], (rho, sr, p, mumax, mup, dmg), u, r_new, a0)
+        (rho, sr, p, mumax, mup, dmg, eps), u = _remap(r, r[0], (rho, sr, p, mumax, mup, dmg, eps), u, r_new, a0)
         u = u.copy()
         u[0] = V
         r = r_new
     res.wall_stress = res.history[-1]
     res.cycles = len(res.history)
     res.profile = {"xi": 0.5 * (r[1:] + r[:-1]) / r[0], "rho": rho, "p": p, "s_r": sr, "D": dmg, "mu_max": mumax,
-                   "mu_p": mup, "xi_node": r / r[0], "u_over_V": u / V}
+                   "mu_p": mup, "eps_p": eps, "xi_node": r / r[0], "u_over_V": u / V}
     return res
 
 
@@ -306,6 +307,6 @@ def single_expansion(model, V, a0, a_end, xi_max=50.0, zones=400, controls: Cont
     u = np.zeros(zones + 1)
     u[0] = V
     mass = rho0 * (r[1:] ** 3 - r[:-1] ** 3) / 3.0
-    state = [np.zeros(zones) for _ in range(5)]
+    state = [np.zeros(zones) for _ in range(6)]
     w, _ = _cycle(kind, q, rho0, V, r, u, mass, *state, a_end, controls.cfl, controls.q_quad, controls.q_lin)
     return w

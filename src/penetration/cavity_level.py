@@ -77,29 +77,35 @@ def cavity_trajectory(nose, mass, vs, table: SigmaTable, effects=("crater", "cav
     return integrate(asm, mass, vs, rtol=rtol)
 
 
-def calibrate_strength_scale(material: HJC, nose, mass, vs, depth, velocities, radius, effects=("crater", "cavity"),
-                             mu=0.0, mesh: Mesh = Mesh(), controls: Controls = Controls(), bracket=(0.05, 2.0)):
-    """strength_scale that makes the cavity-level trajectory reach ``depth``.
+CALIBRATABLE = {"strength_scale": (0.05, 2.0), "erosion_strain": (0.02, 2.0)}
 
-    Depth falls as the strength grows, so the root in log(scale) is
-    bracketed; every evaluation computes a new sigma_n table.
+
+def calibrate_parameter(material: HJC, name, nose, mass, vs, depth, velocities, radius, effects=("crater", "cavity"),
+                        mu=0.0, mesh: Mesh = Mesh(), controls: Controls = Controls(), bracket=None):
+    """Value of the HJC parameter ``name`` that makes the cavity-level trajectory reach ``depth``.
+
+    ``strength_scale`` (a factor on the strength surface) or ``erosion_strain``
+    (plastic strain beyond which the target carries no deviatoric stress):
+    the depth falls as either grows, so the root in log(value) is bracketed;
+    every evaluation computes a new sigma_n table.
     """
+    if name not in CALIBRATABLE:
+        raise ValueError(f"calibration parameter {name!r} not in {sorted(CALIBRATABLE)}")
+    bracket = bracket or CALIBRATABLE[name]
     evaluations, seen = [], {}
 
-    def miss(log_scale):
-        if log_scale not in seen:
-            mat = dataclasses.replace(material, strength_scale=math.exp(log_scale))
+    def miss(log_value):
+        if log_value not in seen:
+            mat = dataclasses.replace(material, **{name: math.exp(log_value)})
             table, _ = sigma_table(mat, velocities, radius, mesh, controls)
             d = cavity_trajectory(nose, mass, vs, table, effects, mu).depth
-            evaluations.append((math.exp(log_scale), d))
-            seen[log_scale] = d - depth
-        return seen[log_scale]
+            evaluations.append((math.exp(log_value), d))
+            seen[log_value] = d - depth
+        return seen[log_value]
 
     lo, hi = (math.log(b) for b in bracket)
     if miss(lo) < 0 or miss(hi) > 0:
-        raise ValueError(f"no strength_scale in {bracket} gives {depth} m: {evaluations}")
+        raise ValueError(f"no {name} in {bracket} gives {depth} m: {evaluations}")
     x = brentq(miss, lo, hi, xtol=1e-4)
-    scale = math.exp(x)
     final = miss(x)
-    return {"strength_scale": scale, "residual_m": final, "relative_residual": final / depth,
-            "evaluations": evaluations}
+    return {name: math.exp(x), "residual_m": final, "relative_residual": final / depth, "evaluations": evaluations}

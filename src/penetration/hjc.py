@@ -31,6 +31,11 @@ parameter where codes disagree:
   0) and ``strength_scale``, a factor on the whole strength surface (the
   in-situ strength relative to the laboratory parameter set; the one
   parameter calibrated on the DO1 shot at the cavity level).
+- ``erosion_strain`` (default inf: off): once the accumulated equivalent
+  plastic strain reaches it, the point keeps its pressure but carries no
+  deviatoric stress. A continuum stand-in for LS-DYNA's element erosion at
+  the paper's failure strain fs, which deletes the element; the cavity
+  level can calibrate it instead of ``strength_scale``.
 """
 from __future__ import annotations
 
@@ -44,7 +49,7 @@ from .geometry import ParameterError
 
 # indices into the parameter array used by the compiled kernels
 (I_RHO0, I_G, I_A, I_B, I_C, I_N, I_FC, I_T, I_EPS0, I_EFMIN, I_SMAX, I_PC, I_MUC, I_PL, I_MUL, I_D1, I_D2,
- I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR, I_SCALE, I_DAMAGE) = range(26)
+ I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR, I_SCALE, I_DAMAGE, I_EROSION) = range(27)
 LOCKS = ("offset", "literal")
 TENSIONS = ("openradioss", "sphinxsys")
 
@@ -78,6 +83,7 @@ class HJC:
     rate: bool = True
     damage: bool = True
     strength_scale: float = 1.0
+    erosion_strain: float = math.inf
 
     def __post_init__(self):
         positive = ("rho0", "G", "A", "fc", "T", "eps0", "efmin", "smax", "pc", "muc", "pl", "mul", "D1", "k1")
@@ -87,6 +93,8 @@ class HJC:
                 raise ParameterError("hjc", name, v, f"{name} > 0 (SI units)")
         if not (math.isfinite(self.strength_scale) and self.strength_scale > 0):
             raise ParameterError("hjc", "strength_scale", self.strength_scale, "strength_scale > 0")
+        if not self.erosion_strain > 0:
+            raise ParameterError("hjc", "erosion_strain", self.erosion_strain, "erosion_strain > 0 (inf: off)")
         for name in ("B", "C", "N", "D2"):
             if not getattr(self, name) >= 0:
                 raise ParameterError("hjc", name, getattr(self, name), f"{name} >= 0")
@@ -124,7 +132,7 @@ class HJC:
         vals = [self.rho0, self.G, self.A, self.B, self.C if self.rate else 0.0, self.N, self.fc, self.T, self.eps0, self.efmin, self.smax,
                 self.pc, self.muc, self.pl, self.mul, self.D1, self.D2, self.k1, self.k2, self.k3, self.Ke,
                 self.mu_lock, float(TENSIONS.index(self.tension)), float(self.rate_floor),
-                self.strength_scale, float(self.damage)]
+                self.strength_scale, float(self.damage), min(self.erosion_strain, 1e300)]
         return np.array(vals, float)
 
 
@@ -221,6 +229,14 @@ def strength(p, D, rate, q):
 
 
 @njit(cache=True)
+def yield_stress(p, D, eps_p, rate, q):
+    """strength(), or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
+    if eps_p >= q[I_EROSION]:
+        return 0.0
+    return strength(p, D, rate, q)
+
+
+@njit(cache=True)
 def fracture_strain(p, q):
     """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18."""
     x = (p + q[I_T]) / q[I_FC]
@@ -230,13 +246,14 @@ def fracture_strain(p, q):
 
 
 @njit(cache=True)
-def update_point(s, mu, mu_max, mu_p, D, deps, rate, q):
+def update_point(s, mu, mu_max, mu_p, D, eps_p, deps, rate, q):
     """One HJC stress update of a material point (hypo-elastic, radial return).
 
     s: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
-    components), already rotated (Jaumann) by the caller; deps: total
-    strain increment (same layout, tensor shear). Returns new s (in place),
-    p, mu_max, mu_p, D, and the plastic strain increment.
+    components), already rotated (Jaumann) by the caller; eps_p: plastic
+    strain accumulated so far (erosion criterion); deps: total strain
+    increment (same layout, tensor shear). Returns new s (in place), p,
+    mu_max, mu_p, D, and the plastic strain increment.
     """
     G = q[I_G]
     tr = (deps[0] + deps[1] + deps[2]) / 3.0
@@ -248,7 +265,7 @@ def update_point(s, mu, mu_max, mu_p, D, deps, rate, q):
     p = cutoff(p, D, q)
     j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5]
     seq = math.sqrt(3.0 * j2)
-    sy = strength(p, D, rate, q)
+    sy = yield_stress(p, D, eps_p, rate, q)
     dep = 0.0
     if seq > sy:
         scale = sy / seq if seq > 0.0 else 0.0
@@ -313,7 +330,7 @@ def drive(material: HJC, increments, rate=1.0, state: PointState | None = None, 
             st.s = jaumann(st.s, spin, dt)
         st.strain = st.strain + de
         mu = math.exp(-(st.strain[0] + st.strain[1] + st.strain[2])) - 1.0
-        st.p, st.mu_max, st.mu_p, st.D, dep = update_point(st.s, mu, st.mu_max, st.mu_p, st.D, de, rate, q)
+        st.p, st.mu_max, st.mu_p, st.D, dep = update_point(st.s, mu, st.mu_max, st.mu_p, st.D, st.eps_p, de, rate, q)
         st.eps_p += dep
         sig = st.s.copy()
         sig[:3] -= st.p

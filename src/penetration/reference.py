@@ -362,7 +362,7 @@ def fig15_rows(refs, fig15, do1_pd_stated, do1_pd_calibrated):
             _row(ex, ex.quantity, "DO1 835 m/s (ours; S calibrated to it)", do1_pd_calibrated, "not-derivable")]
 
 
-def cavity_rows(refs, table3, cavity, do1_depth, scale):
+def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
     """Cavity level: Table 3's simulation column, the 1200 m/s gains, Fig 14, Fig 12.
 
     table3: rows with velocity_ms, nose, cavity_m; cavity: rows of the cavity
@@ -388,4 +388,8 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale):
     ref = R["table2.dop"]
     rows.append(_row(ref, "dop", f"DO1 (cavity level; strength scale {scale:.4g} calibrated to it)", do1_depth,
                      "not-derivable"))
+    if erosion_strain is not None:
+        rows.append(unstated(R["table1.fs"], erosion_strain,
+                             case="cavity level: plastic strain beyond which the target carries no deviatoric stress; "
+                                  "calibrated on DO1 (the paper's fs erodes elements of its unstated 3-D mesh)"))
     return rows

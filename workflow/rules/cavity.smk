@@ -87,15 +87,17 @@ rule accuracy_cavity:
     script: "../scripts/run_task.py"
 
 
-rule cavity_table3_convergence:
+rule cavity_table3_sensitivity:
     input:
         CAVITY_SRC, DOP_SRC, **GEOMETRY_RESULTS,
         reference=config["reference"],
         scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
-    output: csv="figures/cavity_table3_convergence.csv",
-    params: cfg=config["cavity"], zones=[50, 100, 200],
+    output: csv="figures/cavity_table3_sensitivity.csv",
+    params: cfg=config["cavity"],
+            variants=[{"parameter": "strength_scale", "zones": z} for z in (50, 100, 200)]
+                     + [{"parameter": "erosion_strain", "zones": 100}],
             depth=config["calibration"]["do1"]["depth"], velocity=config["calibration"]["do1"]["velocity"],
-    log: "results/logs/cavity_table3_convergence.log",
+    log: "results/logs/cavity_table3_sensitivity.log",
     script: "../scripts/run_task.py"
 
 

@@ -18,6 +18,7 @@ rule diff:
         cavity_table3="results/scenes/cavity/table3.csv",
         cavity_do1="results/scenes/cavity/do1.csv",
         cal_cavity="results/calibration/cavity_do1.json",
+        sensitivity="figures/cavity_table3_sensitivity.csv",
     output:
         diff="figures/diff.csv",
         summary="figures/diff_summary.md",
@@ -29,7 +30,7 @@ rule diff:
 
 rule reproduce_check:
     input:
-        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES + ["validation", "do1_family_sensitivity", "cavity_table3_convergence"]),
+        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES + ["validation", "do1_family_sensitivity", "cavity_table3_sensitivity"]),
         diff="figures/diff.csv",
     output:
         report="results/check/reproduce_check.txt",
