@@ -75,3 +75,24 @@ def test_hjc_level_finite_monotone_and_energy_closed_from_30_to_2500(hjc_table, 
         assert tr.work == pytest.approx(0.5 * 81.1 * vs**2, rel=1e-5)
         depths.append(tr.depth)
     assert np.all(np.diff(depths) > 0)
+
+
+@pytest.mark.parametrize("name, truth", [("strength_scale", 0.7), ("erosion_strain", 0.3)])
+def test_calibration_recovers_the_parameter_that_made_the_depth(name, truth):
+    """Round trip on a coarse table: the depth of a known parameter value gives that value back."""
+    import dataclasses
+    from penetration.cavity import Mesh
+    from penetration.cavity_level import calibrate_parameter, sigma_table
+    from penetration.hjc import HJC
+    mesh, vel, nose = Mesh(zones=40), [100.0, 400.0, 900.0, 2000.0], Ogive(3, 0.07)
+    table, _ = sigma_table(dataclasses.replace(HJC(), **{name: truth}), vel, 0.07, mesh)
+    depth = cavity_trajectory(nose, 81.1, 835.0, table).depth
+    fit = calibrate_parameter(HJC(), name, nose, 81.1, 835.0, depth, vel, 0.07, mesh=mesh)
+    assert fit[name] == pytest.approx(truth, rel=2e-3) and abs(fit["relative_residual"]) < 1e-3
+
+
+def test_calibration_names_an_unknown_parameter():
+    from penetration.cavity_level import calibrate_parameter
+    from penetration.hjc import HJC
+    with pytest.raises(ValueError, match="not in"):
+        calibrate_parameter(HJC(), "D1", Ogive(3, 0.07), 81.1, 835.0, 5.1, [100.0, 500.0], 0.07)
