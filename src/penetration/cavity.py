@@ -97,7 +97,7 @@ def material_of(model):
 
 
 # ------------------------------------------------------------------ kernel
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg, eps):
     """Update deviatoric s_r (s_theta = -s_r/2), pressure and history of cell j."""
     if kind == HJC_KIND:

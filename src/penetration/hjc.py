@@ -228,7 +228,7 @@ def strength(p, D, rate, q):
     return q[I_SCALE] * fc * min(s, q[I_SMAX])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def yield_stress(p, D, eps_p, rate, q):
     """strength(), or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
     if eps_p >= q[I_EROSION]:
