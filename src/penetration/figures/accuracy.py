@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import pandas as pd
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..tasks import task, write_csv
 from .common import figure, save
@@ -44,4 +45,8 @@ def accuracy_cavity(inputs, outputs, params):
             if label:
                 ax.legend(fontsize=7)
         ax.set(xlabel="wall time (ms)", ylabel="relative error vs finest", title=title)
+        # a narrow log range: label 1-2-5 steps, never the (overlapping) minor ticks
+        ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
     save(fig, outputs.png, params.dpi)
