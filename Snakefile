@@ -40,5 +40,5 @@ rule all:
         "figures/cavity_sigma_n.png",
         "figures/accuracy_cavity.png",
         "figures/do1_family_sensitivity.csv",
-        "figures/cavity_table3_sensitivity.csv",
+        "figures/cavity_table3_sensitivity.png",
         "figures/ablation_cavity.csv",

@@ -92,12 +92,21 @@ rule cavity_table3_sensitivity:
         CAVITY_SRC, DOP_SRC, **GEOMETRY_RESULTS,
         reference=config["reference"],
         scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
-    output: csv="figures/cavity_table3_sensitivity.csv",
+    output: csv="results/cavity/table3_sensitivity.csv",
     params: cfg=config["cavity"],
             variants=[{"parameter": "strength_scale", "zones": z} for z in (50, 100, 200)]
-                     + [{"parameter": "erosion_strain", "zones": 100}],
+                     + [{"parameter": "erosion_strain", "zones": 100}]
+                     + [{"parameter": "strength_scale", "zones": 100, "friction": mu} for mu in (0.05, 0.1)],
             depth=config["calibration"]["do1"]["depth"], velocity=config["calibration"]["do1"]["velocity"],
     log: "results/logs/cavity_table3_sensitivity.log",
+    script: "../scripts/run_task.py"
+
+
+rule cavity_table3_sensitivity_figure:
+    input: FIG_SRC, f"{SRC}figures/cavity_sensitivity.py", csv="results/cavity/table3_sensitivity.csv",
+    output: png="figures/cavity_table3_sensitivity.png", csv="figures/cavity_table3_sensitivity.csv",
+    params: dpi=config["figures"]["dpi"], goal_pct=7.5,
+    log: "results/logs/cavity_table3_sensitivity_figure.log",
     script: "../scripts/run_task.py"
 
 
