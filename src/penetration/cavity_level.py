@@ -47,11 +47,9 @@ class SigmaTable:
         if self.interpolation not in INTERPOLATIONS:
             raise ValueError(f"SigmaTable: interpolation {self.interpolation!r} not in {INTERPOLATIONS}")
         w = self.v**2
-        if self.interpolation == "linear_v":
-            object.__setattr__(self, "_inside", lambda x: np.interp(np.sqrt(x), self.v, self.sigma))
-            object.__setattr__(self, "_slope", (self.sigma[-1] - self.sigma[-2]) / (w[-1] - w[-2]))
-            return
-        object.__setattr__(self, "_inside", PchipInterpolator(w, self.sigma, extrapolate=False))
+        inside = (PchipInterpolator(w, self.sigma, extrapolate=False) if self.interpolation == "pchip_v2"
+                  else lambda x: np.interp(np.sqrt(x), self.v, self.sigma))
+        object.__setattr__(self, "_inside", inside)
         object.__setattr__(self, "_slope", (self.sigma[-1] - self.sigma[-2]) / (w[-1] - w[-2]))
 
     def __call__(self, vn):
