@@ -96,3 +96,11 @@ def test_calibration_names_an_unknown_parameter():
     from penetration.hjc import HJC
     with pytest.raises(ValueError, match="not in"):
         calibrate_parameter(HJC(), "D1", Ogive(3, 0.07), 81.1, 835.0, 5.1, [100.0, 500.0], 0.07)
+
+
+def test_linear_interpolation_of_the_density_study_is_straight_in_v():
+    v = np.array([0.0, 100.0, 400.0])
+    t = SigmaTable(v, 1e8 + 2e5 * v, np.zeros(3, bool), interpolation="linear_v")
+    np.testing.assert_allclose(t(np.array([50.0, 250.0, 400.0])), 1e8 + 2e5 * np.array([50.0, 250.0, 400.0]))
+    with pytest.raises(ValueError, match="interpolation"):
+        SigmaTable(v, v, np.zeros(3, bool), interpolation="cubic")
