@@ -96,7 +96,7 @@ rule cavity_table3_sensitivity:
     params: cfg=config["cavity"],
             variants=[{"parameter": "strength_scale", "zones": z} for z in (50, 100, 200)]
                      + [{"parameter": "erosion_strain", "zones": 100}]
-                     + [{"parameter": "strength_scale", "zones": 100, "friction": mu} for mu in (0.05, 0.1)],
+                     + [{"parameter": "strength_scale", "zones": 100, "friction": mu} for mu in (0.02, 0.05, 0.1)],
             depth=config["calibration"]["do1"]["depth"], velocity=config["calibration"]["do1"]["velocity"],
     log: "results/logs/cavity_table3_sensitivity.log",
     script: "../scripts/run_task.py"
