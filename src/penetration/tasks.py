@@ -678,6 +678,7 @@ def scene_cavity(inputs, outputs, params):
     gets its own sigma_n table at the calibrated strength scale.
     """
     from .cavity_level import cavity_trajectory, sigma_table
+    from .resistance import nose_surface
     sc = _resolved(inputs.scene, inputs.schema, inputs)
     switches = scene_material_switches(sc, params.cfg)
     if switches:
@@ -695,6 +696,9 @@ def scene_cavity(inputs, outputs, params):
             rows.append({"scene": sc.name, "nose": name, "nstar": nstar(nose), "velocity": v, "cavity_dop": tr.depth,
                          "dop_over_d": tr.depth / (2 * nose.radius), "duration": tr.duration,
                          "peak_deceleration": float(tr.deceleration.max()),
+                         # largest normal stress on the nose (at impact, where the surface is steepest):
+                         # beyond the projectile's yield strength the rigid-body assumption fails
+                         "peak_nose_stress": float(table(v * nose_surface(nose).sin_beta.max())),
                          "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0})
             hist.append(pd.DataFrame({"nose": name, "velocity": v, "t": tr.t, "z": tr.z, "v": tr.v,
                                       "deceleration": tr.deceleration}))
