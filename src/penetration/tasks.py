@@ -595,10 +595,10 @@ def _cavity_settings(cfg):
             Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"]))
 
 
-def _cavity_material(refs, cfg, scale=1.0, **overrides):
+def _cavity_material(refs, cfg, **overrides):
+    """Table 1 HJC with the configured conventions; ``overrides`` set any other field (e.g. strength_scale)."""
     switches = {k: cfg[k] for k in ("lock", "tension", "rate_floor")}
-    base = hjc_from_reference(refs, strength_scale=overrides.pop("strength_scale", scale), **switches)
-    return dataclasses.replace(base, **overrides)
+    return dataclasses.replace(hjc_from_reference(refs, **switches), **overrides)
 
 
 @task
@@ -639,7 +639,7 @@ def cavity_table(inputs, outputs, params):
     rows = []
     for label, s in (("calibrated", scale), ("table1", 1.0)):
         t0 = time.perf_counter()
-        table, results = sigma_table(_cavity_material(refs, cfg, s), cfg["velocities"], params.radius, mesh, controls)
+        table, results = sigma_table(_cavity_material(refs, cfg, strength_scale=s), cfg["velocities"], params.radius, mesh, controls)
         cost = time.perf_counter() - t0
         stats = [None] + results
         for v, sig, ex, r in zip(table.v, table.sigma, table.extrapolated, stats):
@@ -683,7 +683,7 @@ def scene_cavity(inputs, outputs, params):
     switches = scene_material_switches(sc, params.cfg)
     if switches:
         refs, cfg, mesh, controls, scale = _calibrated_context(inputs, params)
-        mat = _cavity_material(refs, cfg, scale, **switches)
+        mat = _cavity_material(refs, cfg, strength_scale=scale, **switches)
         table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
         print(f"own sigma_n table for switches {switches}")
     else:
@@ -691,6 +691,7 @@ def scene_cavity(inputs, outputs, params):
     effects = tuple(e for e in sc.effects if e not in MATERIAL_EFFECTS)
     rows, hist = [], []
     for name, nose in sc.noses.items():
+        steepest = nose_surface(nose).sin_beta.max()
         for v in sc.velocities:
             tr = cavity_trajectory(nose, sc.mass, v, table, effects, sc.friction, params.rtol)
             rows.append({"scene": sc.name, "nose": name, "nstar": nstar(nose), "velocity": v, "cavity_dop": tr.depth,
@@ -698,7 +699,7 @@ def scene_cavity(inputs, outputs, params):
                          "peak_deceleration": float(tr.deceleration.max()),
                          # largest normal stress on the nose (at impact, where the surface is steepest):
                          # beyond the projectile's yield strength the rigid-body assumption fails
-                         "peak_nose_stress": float(table(v * nose_surface(nose).sin_beta.max())),
+                         "peak_nose_stress": float(table(v * steepest)),
                          "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0})
             hist.append(pd.DataFrame({"nose": name, "velocity": v, "t": tr.t, "z": tr.z, "v": tr.v,
                                       "deceleration": tr.deceleration}))
@@ -726,8 +727,8 @@ def cavity_ablation(inputs, outputs, params):
     rows = []
     for label, over, effects, mu in variants:
         t0 = time.perf_counter()
-        table, _ = sigma_table(_cavity_material(refs, cfg, scale, **over), cfg["velocities"], nose.radius, mesh,
-                               controls)
+        mat = _cavity_material(refs, cfg, strength_scale=scale, **over)
+        table, _ = sigma_table(mat, cfg["velocities"], nose.radius, mesh, controls)
         t1 = time.perf_counter()
         tr = cavity_trajectory(nose, mass, vs, table, effects, mu)
         t2 = time.perf_counter()
@@ -744,21 +745,20 @@ def cavity_accuracy(inputs, outputs, params):
     import time
     from .cavity import Controls, Mesh, expand
     from .cavity_level import INTERPOLATIONS, cavity_trajectory, sigma_table
-    refs, cfg, _, _, scale = _calibrated_context(inputs, params)
-    mat = _cavity_material(refs, cfg, scale)
+    refs, cfg, mesh, ctl, scale = _calibrated_context(inputs, params)
+    mat = _cavity_material(refs, cfg, strength_scale=scale)
     rows = []
     expand(mat, params.velocity, 0.07, Mesh(zones=min(params.zones)), Controls())  # compile before timing
     for study, runs in (("zones", [dict(zones=z) for z in params.zones]),
                         ("cfl", [dict(cfl=c) for c in params.cfls])):
         for run in runs:
-            mesh = Mesh(zones=run.get("zones", cfg["zones"]), cap=cfg["cap"])
-            ctl = Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=run.get("cfl", cfg["cfl"]))
+            run_mesh = Mesh(zones=run.get("zones", cfg["zones"]), cap=cfg["cap"])
+            run_ctl = Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=run.get("cfl", cfg["cfl"]))
             t0 = time.perf_counter()
-            res = expand(mat, params.velocity, 0.07, mesh, ctl)
+            res = expand(mat, params.velocity, 0.07, run_mesh, run_ctl)
             rows.append({"study": study, "setting": list(run.values())[0], "value": res.wall_stress,
                          "wall_time_s": time.perf_counter() - t0})
     nose = read_inference(inputs.do1)["nose"]
-    mesh, ctl = _cavity_settings(cfg)
     for n in params.table_nodes:
         t0 = time.perf_counter()
         dense, _ = sigma_table(mat, np.linspace(params.table_span[0], params.table_span[1], n), 0.07, mesh, ctl)
@@ -784,15 +784,18 @@ def cavity_accuracy(inputs, outputs, params):
 def cavity_table3_sensitivity(inputs, outputs, params):
     """Table 3 at the cavity level for each calibration variant (parameter, zone count).
 
-    Every variant recalibrates its parameter on the DO1 shot and recomputes
-    the twelve cells: the zone-count rows show the deviations from the
-    paper's simulation column are not a mesh artefact; the erosion_strain
-    and friction rows show how much they depend on which parameter is
-    calibrated and on the unstated contact friction.
+    Every variant calibrates its parameter on the DO1 shot (the variant of
+    the calibration of record reads it from ``inputs.cal`` instead) and
+    recomputes the twelve cells: the zone-count rows show the deviations
+    from the paper's simulation column are not a mesh artefact; the
+    erosion_strain and friction rows show how much they depend on which
+    parameter is calibrated and on the unstated contact friction.
     """
     import time
     from .cavity import Mesh
     from .cavity_level import calibrate_parameter, cavity_trajectory, sigma_table
+    from .scenes import load_json
+    recorded = load_json(inputs.cal)
     refs = reference.load_reference(inputs.reference)
     cfg = params.cfg
     sc = _resolved(inputs.scene, inputs.schema, inputs)
@@ -805,9 +808,12 @@ def cavity_table3_sensitivity(inputs, outputs, params):
         with_friction = ("friction",) if mu > 0 else ()
         mesh = Mesh(zones=zones, cap=cfg["cap"])
         t0 = time.perf_counter()
-        fit = calibrate_parameter(_cavity_material(refs, cfg), name, sc.noses["double_ogive"], sc.mass, vs, depth,
-                                  cfg["velocities"], sc.radius, tuple(cfg["effects"]) + with_friction, mu, mesh,
-                                  controls)
+        if (name, zones, mu) == ("strength_scale", cfg["zones"], 0.0):  # the calibration of record
+            fit = {name: recorded["strength_scale"], "residual_m": recorded["residual_m"]}
+        else:
+            fit = calibrate_parameter(_cavity_material(refs, cfg), name, sc.noses["double_ogive"], sc.mass, vs,
+                                      depth, cfg["velocities"], sc.radius, tuple(cfg["effects"]) + with_friction, mu,
+                                      mesh, controls)
         mat = _cavity_material(refs, cfg, **{name: fit[name]})
         table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
         for nose_name, nose in sc.noses.items():

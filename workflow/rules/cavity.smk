@@ -90,6 +90,7 @@ rule accuracy_cavity:
 rule cavity_table3_sensitivity:
     input:
         CAVITY_SRC, DOP_SRC, **GEOMETRY_RESULTS,
+        cal="results/calibration/cavity_do1.json",
         reference=config["reference"],
         scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
     output: csv="results/cavity/table3_sensitivity.csv",
