@@ -5,11 +5,10 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
-ORDER = ["units", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
-         "calibration", "reference",
-         "scenes", "tasks", "figures", "pipeline"]
+ORDER = ["units", "geometry", "hjc_effects", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
+         "calibration", "shots", "reference", "config", "scenes", "io", "figures", "tasks", "pipeline", "cli"]
 PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
-           "calibration"]
+           "calibration", "shots"]
 
 
 def imports(module):
@@ -43,6 +42,11 @@ def test_dop_and_simulation_levels_are_independent():
     """The closed form and the trajectory engine check each other, so neither imports the other."""
     assert "trajectory" not in imports("dop")
     assert "dop" not in imports("trajectory")
+
+
+def test_figures_read_results_only():
+    """Figure modules import the I/O module and the reference table, never a task or physics module."""
+    assert not imports("figures") & {"tasks", "pipeline", *PHYSICS}
 
 
 def test_cavity_level_does_not_use_the_closed_form():

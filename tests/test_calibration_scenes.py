@@ -64,10 +64,8 @@ def test_resolve_and_velocity_range():
 
 
 def test_cavity_scene_effects_switch_hjc_terms():
-    from types import SimpleNamespace
-    from penetration.tasks import scene_material_switches
+    from penetration.cavity_level import material_switches
     cfg = {"lock": "offset", "tension": "openradioss"}
-    full = SimpleNamespace(effects=("crater", "cavity", "strain_rate", "damage", "strength_cap"), material={})
-    assert scene_material_switches(full, cfg) == {}
-    bare = SimpleNamespace(effects=("nose_entry", "cavity"), material={"lock": "literal"})
-    assert scene_material_switches(bare, cfg) == {"rate": False, "damage": False, "smax": 1e6, "lock": "literal"}
+    assert material_switches(("crater", "cavity", "strain_rate", "damage", "strength_cap"), {}, cfg) == {}
+    assert material_switches(("nose_entry", "cavity"), {"lock": "literal"}, cfg) == {
+        "rate": False, "damage": False, "smax": 1e6, "lock": "literal"}

@@ -51,13 +51,12 @@ def test_table_rejects_bad_velocities(v):
 @pytest.fixture(scope="module")
 def hjc_table():
     """sigma_n(v) of Table 1 HJC concrete at a strength scale near the calibrated one."""
-    import dataclasses
     from pathlib import Path
     from penetration.cavity_level import sigma_table
     from penetration.reference import load_reference
-    from penetration.tasks import hjc_from_reference
+    from penetration.hjc import from_table1
     refs = load_reference(Path(__file__).resolve().parents[1] / "workflow/reference/paper_values.csv")
-    mat = dataclasses.replace(hjc_from_reference(refs), strength_scale=0.6)
+    mat = from_table1(lambda q: refs[f"table1.{q}"].si, strength_scale=0.6)
     v = [50.0, 100.0, 200.0, 400.0, 800.0, 1200.0, 2000.0]
     return sigma_table(mat, v, 0.07)[0]
 

@@ -1,12 +1,16 @@
-"""The reproduction check fails on drift (run in a scratch git repository)."""
+"""The reproduction check: per-column tolerances from precision classes (run in a scratch git repository)."""
 import os
 import subprocess
 
+import pandas as pd
 import pytest
 
-from penetration.tasks import reproduction_problems
+from penetration.tasks.reference import column_tolerances, frames_differ, reproduction_problems
 
 HEAD = "item,quantity,case,paper,ours,rel_err,tol,status\n"
+CHECK = {"factor": 10.0,
+         "precision": {"fine": {"rtol": 1e-7}, "residual": {"atol": 1e-6}, "history": {"rtol": 1e-8, "scale": 1e-8}},
+         "outputs": {"fig.csv": {"default": "fine", "columns": {"r": "residual"}}}}
 
 
 @pytest.fixture
@@ -14,37 +18,62 @@ def repo(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     env = {**os.environ, "GIT_AUTHOR_NAME": "t", "GIT_AUTHOR_EMAIL": "t@t", "GIT_COMMITTER_NAME": "t",
            "GIT_COMMITTER_EMAIL": "t@t"}
-    (tmp_path / "fig.csv").write_text("x,y,name\n0,1.0,a\n1,2.0,b\n")
+    (tmp_path / "fig.csv").write_text("x,y,r,name\n0,1.0,1e-7,a\n1,2.0,-2e-7,b\n")
     (tmp_path / "diff.csv").write_text(HEAD + "table4,nstar,cone,0.0553,0.0556,0.005,0.01,reproduced\n")
     for cmd in (["git", "init", "-q"], ["git", "add", "."], ["git", "commit", "-qm", "x"]):
         subprocess.run(cmd, check=True, env=env, capture_output=True)
     return tmp_path
 
 
+def check(outputs=("fig.csv",)):
+    return reproduction_problems(list(outputs), "diff.csv", CHECK)
+
+
 def test_unchanged_passes(repo):
-    problems, compared = reproduction_problems(["fig.csv"], "diff.csv", 1e-6, 1e-12)
+    problems, compared = check()
     assert problems == [] and compared == 1
 
 
-def test_tiny_noise_passes(repo):
-    (repo / "fig.csv").write_text("x,y,name\n0,1.0000000001,a\n1,2.0,b\n")
-    assert reproduction_problems(["fig.csv"], "diff.csv", 1e-6, 1e-12)[0] == []
+def test_noise_within_the_precision_passes(repo):
+    # y moves by 5e-7 relative (< 10 x 1e-7); the residual column by 4e-6 absolute (< 10 x 1e-6)
+    (repo / "fig.csv").write_text("x,y,r,name\n0,1.0000005,4.1e-6,a\n1,2.0,-2e-7,b\n")
+    assert check()[0] == []
 
 
-def test_numeric_drift_fails(repo):
-    (repo / "fig.csv").write_text("x,y,name\n0,1.001,a\n1,2.0,b\n")
-    problems, _ = reproduction_problems(["fig.csv"], "diff.csv", 1e-6, 1e-12)
-    assert len(problems) == 1 and "column y row 2" in problems[0]
+def test_numeric_drift_fails_and_names_the_cell(repo):
+    (repo / "fig.csv").write_text("x,y,r,name\n0,1.000002,1e-7,a\n1,2.0,-2e-7,b\n")
+    problems, _ = check()
+    assert len(problems) == 1 and "column y row 2" in problems[0] and "allowed" in problems[0]
+
+
+def test_residual_uses_its_absolute_tolerance(repo):
+    # a relative change of 100 (1e-7 -> 2e-5) in a residual fails only because 2e-5 - 1e-7 > 10 x 1e-6
+    (repo / "fig.csv").write_text("x,y,r,name\n0,1.0,2e-5,a\n1,2.0,-2e-7,b\n")
+    assert "column r" in check()[0][0]
 
 
 def test_text_and_shape_changes_fail(repo):
-    (repo / "fig.csv").write_text("x,y,name\n0,1.0,a\n1,2.0,c\n")
-    assert "column name" in reproduction_problems(["fig.csv"], "diff.csv", 1e-6, 1e-12)[0][0]
-    (repo / "fig.csv").write_text("x,y,name\n0,1.0,a\n")
-    assert "row count" in reproduction_problems(["fig.csv"], "diff.csv", 1e-6, 1e-12)[0][0]
+    (repo / "fig.csv").write_text("x,y,r,name\n0,1.0,1e-7,a\n1,2.0,-2e-7,c\n")
+    assert "column name" in check()[0][0]
+    (repo / "fig.csv").write_text("x,y,r,name\n0,1.0,1e-7,a\n")
+    assert "row count" in check()[0][0]
 
 
 def test_lost_reproduction_fails(repo):
     (repo / "diff.csv").write_text(HEAD + "table4,nstar,cone,0.0553,0.06,0.08,0.01,deviates\n")
-    problems, _ = reproduction_problems([], "diff.csv", 1e-6, 1e-12)
+    problems, _ = check(outputs=())
     assert len(problems) == 1 and "was reproduced, now deviates" in problems[0]
+
+
+def test_scale_tolerance_covers_values_through_zero():
+    """A history passing through zero: a 1e-12 change near zero is within scale x max|column|."""
+    old = pd.DataFrame({"v": [800.0, 1e-9, 0.0]})
+    new = pd.DataFrame({"v": [800.0, 1.5e-9, 0.0]})
+    tol = column_tolerances("history", CHECK["precision"], 10.0, ["v"])
+    assert frames_differ(new, old, tol) is None
+    assert frames_differ(pd.DataFrame({"v": [800.0, 1e-3, 0.0]}), old, tol) is not None
+
+
+def test_unknown_precision_class_is_an_error():
+    with pytest.raises(KeyError, match="precision classes"):
+        column_tolerances("nope", CHECK["precision"], 10.0, ["x"])

@@ -84,8 +84,24 @@ def test_nose_entry_friction_and_ramp_are_consistent():
 def test_effect_errors_name_the_field():
     with pytest.raises(ParameterError, match="effects"):
         assemble(("crater", "drag"), Ogive(3, 0.07), 0.1, 81.1, TG, 800.0)
-    with pytest.raises(ParameterError, match="crater replaces"):
+    with pytest.raises(ParameterError, match="crater is not allowed with"):
         assemble(("crater", "nose_entry"), Ogive(3, 0.07), 0.1, 81.1, TG, 800.0)
+    with pytest.raises(ParameterError, match="static needs a target"):
+        assemble(("static",), Ogive(3, 0.07), 0.1, 81.1, None, 800.0)
+    with pytest.raises(ParameterError, match="cavity needs a sigma_n"):
+        assemble(("cavity",), Ogive(3, 0.07), 0.1, 81.1, TG, 800.0)
+
+
+def test_scene_schema_effects_are_the_registries():
+    """Every effect a scene may name is a registered trajectory or material effect, and the reverse."""
+    import json
+    from pathlib import Path
+    from penetration.cavity_level import MATERIAL_EFFECTS
+    from penetration.trajectory import EFFECTS
+    schema = json.loads((Path(__file__).resolve().parents[1] / "workflow/schemas/scene.schema.json").read_text())
+    named = set(schema["properties"]["effects"]["items"]["enum"])
+    assert named == set(EFFECTS) | set(MATERIAL_EFFECTS)
+    assert not set(EFFECTS) & set(MATERIAL_EFFECTS)
 
 
 @pytest.mark.parametrize("nose", [Ogive(3, 0.07), Cone(0.07, 0.3), DO, MinimumNstar(0.07, 0.3), Flat(0.07)],

@@ -25,8 +25,8 @@ from scipy.optimize import brentq
 
 from .cavity import Controls, Mesh, stress_table
 from .hjc import HJC
+from .hjc_effects import MATERIAL_EFFECTS
 from .nstar import nstar
-from .resistance import Target
 from .trajectory import assemble, integrate
 
 
@@ -68,11 +68,27 @@ def sigma_table(material: HJC, velocities, radius, mesh: Mesh = Mesh(), controls
                       np.concatenate(([True], np.zeros(v.size, bool)))), results
 
 
-def cavity_trajectory(nose, mass, vs, table: SigmaTable, effects=("crater", "cavity"), mu=0.0, rtol=1e-7):
+def cavity_trajectory(nose, mass, vs, table: SigmaTable, effects=("crater", "cavity"), mu=0.0, rtol=1e-9):
     """Rigid trajectory with the tabulated normal stress over the nose."""
-    dummy = Target(1.0, 1.0, 1.0)  # unused by the cavity effects
-    asm = assemble(effects, nose, nstar(nose), mass, dummy, vs, mu=mu, sigma_n=table)
+    asm = assemble(effects, nose, nstar(nose), mass, None, vs, mu=mu, sigma_n=table)
     return integrate(asm, mass, vs, rtol=rtol)
+
+
+def material_switches(effects, conventions, configured) -> dict:
+    """HJC fields a scene changes from the configured material.
+
+    ``effects``: the scene's effect names (the material effects it leaves
+    out are switched off); ``conventions``: the lock and tension conventions
+    it names; ``configured``: the configuration's conventions. Empty when the
+    scene needs nothing but the configured material.
+    """
+    listed = set(effects)
+    over = {}
+    for name, off in MATERIAL_EFFECTS.items():
+        if name not in listed:
+            over.update(off)
+    over.update({k: v for k, v in conventions.items() if v != configured[k]})
+    return over
 
 
 CALIBRATABLE = {"strength_scale": (0.05, 2.0), "erosion_strain": (0.02, 2.0)}
@@ -104,6 +120,6 @@ def calibrate_parameter(material: HJC, name, nose, mass, vs, depth, velocities, 
     lo, hi = (math.log(b) for b in bracket)
     if miss(lo) < 0 or miss(hi) > 0:
         raise ValueError(f"no {name} in {bracket} gives {depth} m: {evaluations}")
-    x = brentq(miss, lo, hi, xtol=1e-4)
+    x = brentq(miss, lo, hi, xtol=1e-8)
     final = miss(x)
     return {name: math.exp(x), "residual_m": final, "relative_residual": final / depth, "evaluations": evaluations}

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 from .geometry import NOSES, ParameterError, make_nose
 from .nstar import nstar
@@ -46,21 +47,39 @@ def _keywords(pairs):
         key, sep, value = pair.partition("=")
         if not sep or not key:
             raise ParameterError("argument", pair, pair, "key=value")
+        if key in out:
+            raise ParameterError("argument", key, value, f"each key once ({key}={out[key]} is given already)")
         out[key] = value
     return out
 
 
 def _predict(args) -> int:
-    from .tasks import predict_file
+    """Predict the shots of a CSV file; nothing is written unless at least one row could be predicted."""
+    from .io import read_rows, write_rows
+    from .shots import predict_rows
+    src, out = Path(args.shots), Path(args.out)
+    if out.exists() and src.exists() and out.resolve() == src.resolve():
+        return _fail(f"--out {args.out} is the shots file itself; allowed: a different path (the input is never overwritten)")
     try:
-        n, problems = predict_file(args.shots, args.out, args.strength_law)
-    except (OSError, KeyError) as err:
-        print(f"error: cannot read shots file {args.shots}: {err}", file=sys.stderr)
-        return 2
+        fields, rows = read_rows(src)
+    except (OSError, ValueError) as err:
+        return _fail(f"cannot read shots file {args.shots}: {getattr(err, 'strerror', None) or err}")
+    good, problems = predict_rows(rows, args.strength_law)
     for p in problems:
         print(f"skipped {p}", file=sys.stderr)
-    print(f"predicted {n} shots, skipped {len(problems)}; wrote {args.out}", file=sys.stderr)
-    return 0 if n else 2
+    if not good:
+        return _fail(f"no shot in {args.shots} could be predicted ({len(rows)} rows); nothing written")
+    try:
+        write_rows(out, fields + ["dop_pred_m"], good)
+    except OSError as err:
+        return _fail(f"cannot write --out {args.out}: {err.strerror or err}")
+    print(f"predicted {len(good)} shots, skipped {len(problems)}; wrote {args.out}", file=sys.stderr)
+    return 0
+
+
+def _fail(message) -> int:
+    print(f"error: {message}", file=sys.stderr)
+    return 2
 
 
 def main(argv=None) -> int:

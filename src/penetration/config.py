@@ -16,6 +16,39 @@ class ConfigError(ValueError):
     """A config file that does not satisfy its schema."""
 
 
+class _StrictLoader(yaml.SafeLoader):
+    """YAML loader that refuses a key given twice in one mapping (PyYAML keeps the last silently)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen = set()
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if key in seen:
+                raise ConfigError(f"line {key_node.start_mark.line + 1}: key {key!r} is given twice; allowed: each key once")
+            seen.add(key)
+        return super().construct_mapping(node, deep)
+
+
+def _describe(s) -> str:
+    """A short description of what a schema admits (for the alternatives of oneOf)."""
+    if "const" in s:
+        return repr(s["const"])
+    if "enum" in s:
+        return f"one of {s['enum']}"
+    kind = s.get("type")
+    if kind == "object":
+        return f"an object with keys {s.get('required', [])}" + (
+            f" (optional {sorted(set(s.get('properties', {})) - set(s.get('required', [])))})"
+            if set(s.get("properties", {})) - set(s.get("required", [])) else "")
+    if kind == "array":
+        items = _describe(s.get("items", {})) if s.get("items") else "items"
+        return f"a list of {items}" + (f", at most {s['maxItems']}" if "maxItems" in s else "")
+    if kind in ("number", "integer"):
+        bounds = [f"{k} {s[k]}" for k in ("minimum", "exclusiveMinimum", "maximum", "exclusiveMaximum") if k in s]
+        return f"a {'number' if kind == 'number' else 'whole number'}" + (f" ({', '.join(bounds)})" if bounds else "")
+    return kind or "anything"
+
+
 def _allowed(err) -> str:
     v, s = err.validator, err.schema
     if v == "additionalProperties":
@@ -31,6 +64,10 @@ def _allowed(err) -> str:
         return f"required keys {s['required']}"
     if v == "pattern":
         return f"a string matching {s['pattern']}"
+    if v in ("oneOf", "anyOf"):
+        return " or ".join(_describe(alt) for alt in s[v])
+    if v in ("maxItems", "minItems"):
+        return f"{'at most' if v == 'maxItems' else 'at least'} {s[v]} items"
     return err.message
 
 
@@ -47,11 +84,68 @@ def validate(data, schema, source: str):
 
 
 def load(path, schema_path):
-    """Read a YAML file and validate it; returns the parsed dict."""
+    """Read a YAML file and validate it against the schema file; returns the parsed dict."""
+    return load_with(path, json.loads(Path(schema_path).read_text()))
+
+
+def load_with(path, schema: dict):
+    """Read a YAML file and validate it against ``schema``; returns the parsed dict."""
     path = Path(path)
     try:
-        data = yaml.safe_load(path.read_text())
+        data = yaml.load(path.read_text(), Loader=_StrictLoader)
+    except ConfigError as err:
+        raise ConfigError(f"{path}: {err}") from None
     except yaml.YAMLError as err:
         raise ConfigError(f"{path}: not valid YAML: {err}") from None
-    schema = json.loads(Path(schema_path).read_text())
+    except (OSError, UnicodeDecodeError) as err:
+        raise ConfigError(f"{path}: cannot read: {err}") from None
     return validate(data if data is not None else {}, schema, str(path))
+
+
+def coerce(data, schema):
+    """``data`` with strings turned into numbers or booleans where ``schema`` asks for them.
+
+    Snakemake's ``--config key={a: 1}`` passes the nested values as strings;
+    this lets such overrides mean what they say. Anything that does not
+    convert is left as it is, for validation to report.
+    """
+    kind = schema.get("type")
+    if isinstance(data, dict):
+        props = schema.get("properties", {})
+        extra = schema.get("additionalProperties")
+        return {k: coerce(v, props.get(k, extra if isinstance(extra, dict) else {})) for k, v in data.items()}
+    if isinstance(data, list):
+        return [coerce(v, schema.get("items", {})) for v in data]
+    if isinstance(data, str):
+        text = data.strip()
+        if kind == "integer" and text.lstrip("+-").isdigit():
+            return int(text)
+        if kind == "number":
+            try:
+                return float(text)
+            except ValueError:
+                return data
+        if kind == "boolean" and text.lower() in ("true", "false"):
+            return text.lower() == "true"
+    return data
+
+
+# config fields naming input files (dotted path): checked to exist when the config is loaded
+FILE_FIELDS = ("reference", "findings", "validation.shots")
+
+
+def check_config(cfg: dict, schema_path, source: str) -> dict:
+    """Coerce command-line overrides, validate ``cfg`` in place and check that the files it names exist."""
+    schema = json.loads(Path(schema_path).read_text())
+    cfg.update(coerce(dict(cfg), schema))
+    validate(cfg, schema, source)
+    missing = []
+    for dotted in FILE_FIELDS:
+        value = cfg
+        for key in dotted.split("."):
+            value = value[key]
+        if not Path(value).is_file():
+            missing.append(f"{source}: {dotted}: file {value!r} does not exist; allowed: the path of an existing file")
+    if missing:
+        raise ConfigError("\n".join(missing))
+    return cfg

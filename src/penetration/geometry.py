@@ -44,6 +44,27 @@ class ParameterError(ValueError):
         super().__init__(f"{where} = {value!r} is not allowed: {allowed}")
 
 
+SIZE = (1e-6, 1e3)  # m: the range of radii a nose may have
+LENGTHS = (1e-6, 1e5)  # m: the range of nose lengths
+PSI_MAX = 1e6  # largest CRH: N* within 3e-10 of the closed form; beyond, the arc angles lose digits
+
+
+def _size(v):
+    return SIZE[0] <= v <= SIZE[1]
+
+
+def _size_text(name):
+    return f"{SIZE[0]:g} <= {name} <= {SIZE[1]:g} m"
+
+
+def _length(v):
+    return LENGTHS[0] <= v <= LENGTHS[1]
+
+
+def _length_text(name):
+    return f"{LENGTHS[0]:g} <= {name} <= {LENGTHS[1]:g} m"
+
+
 def _check(owner, name, value, ok, allowed):
     if not (isinstance(value, (int, float)) and math.isfinite(value) and ok(value)):
         raise ParameterError(owner, name, value, allowed)
@@ -327,8 +348,8 @@ class Ogive(NoseShape):
     tip_radius: float = 0.0
 
     def __post_init__(self):
-        _check("ogive", "psi", self.psi, lambda v: v >= 0.5, "psi >= 0.5 (0.5 is the hemisphere)")
-        _check("ogive", "radius", self.radius, lambda v: v > 0, "radius > 0 m")
+        _check("ogive", "psi", self.psi, lambda v: 0.5 <= v <= PSI_MAX, f"0.5 <= psi <= {PSI_MAX:g} (0.5 is the hemisphere)")
+        _check("ogive", "radius", self.radius, _size, _size_text("radius"))
         _check("ogive", "tip_radius", self.tip_radius, lambda v: 0 <= v < self.radius,
                f"0 <= tip_radius < radius = {self.radius}")
 
@@ -355,8 +376,8 @@ class Cone(NoseShape):
     tip_radius: float = 0.0
 
     def __post_init__(self):
-        _check("cone", "radius", self.radius, lambda v: v > 0, "radius > 0 m")
-        _check("cone", "length", self.length, lambda v: v > 0, "length > 0 m (length 0 is the 'flat' kind)")
+        _check("cone", "radius", self.radius, _size, _size_text("radius"))
+        _check("cone", "length", self.length, _length, _length_text("length"))
         _check("cone", "tip_radius", self.tip_radius, lambda v: 0 <= v < self.radius,
                f"0 <= tip_radius < radius = {self.radius}")
 
@@ -372,7 +393,7 @@ class Flat(NoseShape):
     radius: float
 
     def __post_init__(self):
-        _check("flat", "radius", self.radius, lambda v: v > 0, "radius > 0 m")
+        _check("flat", "radius", self.radius, _size, _size_text("radius"))
 
     length = property(NoseShape.outline_length)
 
@@ -403,7 +424,9 @@ class DoubleOgive(NoseShape):
 
     def __post_init__(self):
         o, a = "double_ogive", self.radius
-        _check(o, "radius", a, lambda v: v > 0, "radius > 0 m")
+        _check(o, "radius", a, _size, _size_text("radius"))
+        for name in ("S1", "S2"):  # beyond, the arcs' angles lose every digit
+            _check(o, name, getattr(self, name), lambda v: 0 < v <= 1e9 * a, f"0 < {name} <= 1e9 radius = {1e9 * a:g} m")
         _check(o, "a2", self.a2, lambda v: 0 < v < a, f"0 < a2 < radius = {a}")
         _check(o, "a1", self.a1, lambda v: 0 < v <= self.a2, f"0 < a1 <= a2 = {self.a2}")
         _check(o, "S2", self.S2, lambda v: v >= a - self.a2,
@@ -422,6 +445,7 @@ class DoubleOgive(NoseShape):
             if not (arc.phi0 >= 0 and arc.phi1 <= 0.5 * math.pi):
                 raise ParameterError(o, "tip_length", self.tip_length,
                                      "a tip ogive through the tip and C that rises monotonically (x_C <= centre x, centre below the axis)")
+        _check(o, "length (from S1, S2, a1, a2)", self.length, _length, _length_text("length"))
 
     @property
     def phi_d(self):
@@ -482,8 +506,8 @@ class MinimumNstar(NoseShape):
     length: float
 
     def __post_init__(self):
-        _check("minimum_nstar", "radius", self.radius, lambda v: v > 0, "radius > 0 m")
-        _check("minimum_nstar", "length", self.length, lambda v: v > 0, "length > 0 m")
+        _check("minimum_nstar", "radius", self.radius, _size, _size_text("radius"))
+        _check("minimum_nstar", "length", self.length, _length, _length_text("length"))
 
     @cached_property
     def segments(self):
@@ -534,6 +558,8 @@ class TabulatedNose(NoseShape):
                                      f"{name} must be non-decreasing from tip to shank")
         if y[0] < 0 or y[-1] <= 0:
             raise ParameterError(where, "y", (y[0], y[-1]), "y >= 0 at the tip and > 0 at the shank")
+        _check(where, "y at the shank (radius)", float(y[-1]), _size, _size_text("radius"))
+        _check(where, "x at the shank (length)", float(x[-1] - x[0]), lambda v: v <= LENGTHS[1], f"length <= {LENGTHS[1]:g} m")
 
     @property
     def radius(self):
@@ -552,8 +578,11 @@ class TabulatedNose(NoseShape):
     def from_csv(cls, path):
         """Read a CSV with a header naming columns x and y (metres)."""
         import csv
-        with open(path, newline="") as fh:
-            rows = list(csv.DictReader(fh))
+        try:
+            with open(path, newline="", encoding="utf-8") as fh:
+                rows = list(csv.DictReader(fh))
+        except (UnicodeDecodeError, csv.Error) as err:
+            raise ParameterError(f"table {path}", "file", type(err).__name__, "a UTF-8 text CSV file") from None
         if not rows or not {"x", "y"} <= set(rows[0]):
             raise ParameterError(f"table {path}", "columns", list(rows[0]) if rows else [], "a header with columns x and y")
         try:

@@ -136,6 +136,21 @@ class HJC:
         return np.array(vals, float)
 
 
+# HJC field -> the quantity of the paper's Table 1 it is read from. Table 1's
+# "K" column is the shear modulus G (see the module docstring); the
+# reference strain rate is the text's 1/s, not the table's misprinted 6.
+TABLE1_FIELDS = {"rho0": "rho", "G": "K", "A": "A", "B": "B", "C": "C", "N": "N", "fc": "fc", "T": "T",
+                 "eps0": "eps0_text", "efmin": "efmin", "smax": "smax", "pc": "pc", "muc": "muc", "pl": "pl",
+                 "mul": "mul", "D1": "D1", "D2": "D2", "k1": "k1", "k2": "k2", "k3": "k3"}
+
+
+def from_table1(value, **fields) -> HJC:
+    """HJC material from the paper's Table 1; ``value(quantity)`` returns a Table 1 quantity in SI units.
+
+    ``fields`` set the switches (lock, tension, ...) or replace a Table 1 value (e.g. smax for ablation).
+    """
+    return HJC(**{**{field: value(quantity) for field, quantity in TABLE1_FIELDS.items()}, **fields})
+
 def _dense_root(k1, k2, k3, p):
     """Smallest positive x with k1 x + k2 x^2 + k3 x^3 = p (Newton from p/k1)."""
     x = p / k1

@@ -1,10 +1,120 @@
-"""Dispatch from a Snakemake rule to the task of the same name."""
-from . import figures  # noqa: F401  (registers the figure and table tasks)
-from .tasks import TASKS
+"""What the Snakefile asks of the package: a rule's code inputs, the study grids, and the dispatch to its task.
+
+Each rule names its task module (``task("tasks.cavity")``, ``task("figures.fig12")``);
+its code inputs are that module and every package module it imports,
+directly or not, so that editing a module re-runs exactly the rules whose
+tasks use it. The rule's task is the function of the rule's name in that
+module.
+"""
+from __future__ import annotations
+
+import ast
+import importlib
+from pathlib import Path
+
+from . import config
+
+PACKAGE = Path(__file__).resolve().parent
+NAME = PACKAGE.name
 
 
-def run(name, inputs, outputs, params):
-    """Entry point used by workflow/scripts/run_task.py."""
-    if name not in TASKS:
-        raise KeyError(f"no task named {name!r}; known: {sorted(TASKS)}")
-    return TASKS[name](inputs, outputs, params)
+def _module_file(dotted: str) -> Path:
+    """File of a package module given as 'tasks.cavity' (package directories give their __init__)."""
+    base = PACKAGE.joinpath(*dotted.split(".")) if dotted else PACKAGE
+    if base.with_suffix(".py").is_file():
+        return base.with_suffix(".py")
+    if (base / "__init__.py").is_file():
+        return base / "__init__.py"
+    raise FileNotFoundError(f"no module {NAME}.{dotted} under {PACKAGE}")
+
+
+def _dotted(path: Path) -> str:
+    rel = path.relative_to(PACKAGE).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _imported(path: Path) -> set[str]:
+    """Dotted names (relative to the package) of the package modules that ``path`` imports, anywhere in it."""
+    here = _dotted(path).split(".") if _dotted(path) else []
+    package = here if path.name == "__init__.py" else here[:-1]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package[:len(package) - node.level + 1]
+            elif node.module and node.module.split(".")[0] == NAME:
+                base = []
+            else:
+                continue
+            mod = node.module or ""
+            if not node.level:
+                mod = mod.partition(".")[2]
+            stem = base + (mod.split(".") if mod else [])
+            found.add(".".join(stem))
+            found.update(".".join(stem + [a.name]) for a in node.names)  # 'from . import x' imports module x
+        elif isinstance(node, ast.Import):
+            found.update(a.name.partition(".")[2] for a in node.names if a.name.split(".")[0] == NAME)
+    return {m for m in found if _exists(m)}
+
+
+def _exists(dotted: str) -> bool:
+    try:
+        _module_file(dotted)
+        return True
+    except FileNotFoundError:
+        return False
+
+
+def _with_parents(dotted: str) -> set[str]:
+    """A module and the packages above it (importing a module runs their __init__ first)."""
+    parts = dotted.split(".") if dotted else []
+    return {".".join(parts[:i]) for i in range(len(parts) + 1)}
+
+
+def code_closure(module: str) -> list[Path]:
+    """Files of ``module`` and of every package module it imports, transitively (sorted)."""
+    seen, todo = set(), list(_with_parents(module))
+    while todo:
+        m = todo.pop()
+        if m in seen:
+            continue
+        seen.add(m)
+        for dep in _imported(_module_file(m)):
+            todo.extend(_with_parents(dep) - seen)
+    return sorted(_module_file(m) for m in seen)
+
+
+def task(module: str, root: str = "src") -> dict:
+    """Named Snakemake inputs of a rule whose task lives in ``module``: ``task`` (its file) and ``code``.
+
+    Paths are relative to the working directory, as ``root/penetration/...``.
+    """
+    rel = lambda p: f"{root}/{NAME}/{p.relative_to(PACKAGE).as_posix()}"
+    return {"task": rel(_module_file(module)), "code": [rel(p) for p in code_closure(module)]}
+
+
+def run(rule, task_file, inputs, outputs, params):
+    """Call the task of ``rule`` in the module whose file is ``task_file`` (used by workflow/scripts/run_task.py)."""
+    parts = Path(task_file).with_suffix("").parts
+    dotted = ".".join(parts[max(i for i, p in enumerate(parts) if p == NAME) + 1:])
+    module = importlib.import_module(f"{NAME}.{dotted}")
+    fn = getattr(module, rule, None)
+    if fn is None:
+        raise KeyError(f"rule {rule!r}: no task of that name in {NAME}.{dotted}")
+    return fn(inputs, outputs, params)
+
+
+def load_studies(folder, schema_path) -> dict:
+    """Study grids by name: every ``folder/NAME.yaml``, each checked against the schema's definition NAME."""
+    import json
+    schema = json.loads(Path(schema_path).read_text())
+    studies = {}
+    for path in sorted(Path(folder).glob("*.yaml")):
+        name = path.stem
+        if name not in schema["$defs"]:
+            raise config.ConfigError(f"{path}: no study named {name!r}; known: {sorted(schema['$defs'])}")
+        studies[name] = config.load_with(path, {**schema["$defs"][name], "$defs": schema["$defs"]})
+    return studies

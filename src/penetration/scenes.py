@@ -15,7 +15,25 @@ import numpy as np
 
 from . import config
 from .geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
+from .hjc_effects import MATERIAL_EFFECTS
 from .resistance import Target, strength_factor
+from .trajectory import EFFECTS
+
+MAX_VELOCITIES = 1000
+# Level -> (effects it can use, effects it must have, what it is). The analytic
+# level is Eq 9, the closed form of exactly crater + static + inertial; a
+# trajectory needs a static term to stop; the cavity level's forces come from
+# its sigma_n table.
+LEVELS = {
+    "analytic": ({"crater", "static", "inertial"}, {"crater", "static", "inertial"}, "Eq 9"),
+    "trajectory": (set(EFFECTS) - {"cavity"}, {"static"}, "the rigid-body trajectory with Eq 7's terms"),
+    "cavity": ({"crater", "nose_entry", "cavity", "friction"} | set(MATERIAL_EFFECTS), {"cavity"},
+               "the trajectory with the HJC cavity-expansion law"),
+}
+
+
+class SceneError(ValueError):
+    """A scene whose fields are each valid but do not fit together (the message names field and allowed values)."""
 
 
 @dataclass(frozen=True)
@@ -34,16 +52,54 @@ class Scene:
     material: dict = field(default_factory=dict)
 
 
-def read_scene(path, schema_path):
-    """The scene file as a validated dict."""
-    return config.load(path, schema_path)
+def read_scene(path, schema_path, levels=None):
+    """The scene file as a validated dict; ``levels``: the levels the reading rule runs (others are refused)."""
+    data = config.load(path, schema_path)
+    if levels is not None and data["level"] not in levels:
+        raise SceneError(f"{path}: level: {data['level']!r} is not run by this rule; allowed: {list(levels)}"
+                         + (" (cavity scenes live in workflow/scenes/cavity/)" if data["level"] == "cavity" else ""))
+    check_level(data, str(path))
+    velocities(data["velocities"], f"{path}: velocities")
+    return data
 
 
-def velocities(spec):
+def velocities(spec, where="velocities"):
+    """Striking velocities of a scene: a list, or {start, stop, step} with stop >= start (at most MAX_VELOCITIES)."""
     if isinstance(spec, dict):
-        n = int(round((spec["stop"] - spec["start"]) / spec["step"])) + 1
-        return spec["start"] + spec["step"] * np.arange(n)
-    return np.asarray(spec, float)
+        start, stop, step = spec["start"], spec["stop"], spec["step"]
+        if not all(np.isfinite([start, stop, step])) or stop < start:
+            raise SceneError(f"{where}: start {start}, stop {stop}, step {step}; allowed: finite, stop >= start")
+        n = int(round((stop - start) / step)) + 1
+        if n > MAX_VELOCITIES:
+            raise SceneError(f"{where}: {n} velocities; allowed: at most {MAX_VELOCITIES}")
+        return start + step * np.arange(n)
+    v = np.asarray(spec, float)
+    if not np.all(np.isfinite(v)):
+        raise SceneError(f"{where}: {spec}; allowed: finite numbers (m/s)")
+    return v
+
+
+def check_level(data, where="scene"):
+    """Refuse effects and settings the scene's level would ignore, and effect sets that cannot stop a projectile."""
+    level, effects = data["level"], set(data["effects"])
+    allowed, required, what = LEVELS[level]
+    unused = sorted(effects - allowed)
+    if unused:
+        raise SceneError(f"{where}: effects: {unused} not used at level {level} ({what}); allowed: {sorted(allowed)}")
+    missing = sorted(required - effects)
+    if missing:
+        raise SceneError(f"{where}: effects: level {level} ({what}) needs {missing}; given {sorted(effects)}; "
+                         f"allowed: a list including {sorted(required)}")
+    settings = {"friction": "friction", "ramp_depth": "free_surface_ramp"}
+    for key, needs in settings.items():
+        if key in data and needs not in effects:
+            raise SceneError(f"{where}: {key} is set but effect {needs} is not listed; allowed: list {needs} or drop {key}")
+    if "friction" in effects and not data.get("friction", 0.0) > 0:
+        raise SceneError(f"{where}: effect friction is listed with friction = {data.get('friction', 0.0)}; "
+                         "allowed: friction > 0 (a coefficient up to 1)")
+    conventions = [k for k in ("lock", "tension") if k in data]
+    if conventions and level != "cavity":
+        raise SceneError(f"{where}: {conventions} apply to the HJC material; allowed only at level cavity")
 
 
 def _nose(spec, radius, inferred):
@@ -82,7 +138,7 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
         prov["S"] = "given"
     noses = {n: _nose(spec, radius, inferred_noses) for n, spec in data["noses"].items()}
     return Scene(name, data["projectile"]["mass"], radius, noses, Target(t["rho"], t["fc"], S),
-                 velocities(data["velocities"]), data["level"], tuple(data["effects"]),
+                 velocities(data["velocities"], f"{name}: velocities"), data["level"], tuple(data["effects"]),
                  data.get("friction", 0.0), data.get("ramp_depth"), prov,
                  {k: data[k] for k in ("lock", "tension") if k in data})
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -27,9 +28,6 @@ from scipy.integrate import solve_ivp
 from .geometry import ParameterError
 from .nstar import cumulative_nstar
 from .resistance import NoseSurface, Target, crater_coefficient, forrestal_stress, nose_force, nose_surface
-
-EFFECTS = ("crater", "nose_entry", "static", "inertial", "friction", "free_surface_ramp", "cavity")
-
 
 @dataclass(frozen=True)
 class Wetted:
@@ -142,61 +140,137 @@ class Assembly:
     breaks: tuple = field(default=())
 
 
-def assemble(names, nose, nstar, mass, target: Target, vs, mu=0.0, ramp_depth=None, sigma_n=None) -> Assembly:
-    """Effect objects for the listed effect names (see module docstring).
+@dataclass(frozen=True)
+class Shot:
+    """What an effect is built from: the nose, the shot, the target's law and the listed effect names.
+
+    ``target`` (Eq 7's S fc and rho) is needed only by the Eq 7 effects and
+    ``sigma_n`` (a tabulated normal-stress law) only by ``cavity``; an effect
+    that needs one that is missing is an error, never a placeholder.
+    """
+    names: frozenset
+    nose: object
+    nstar: float
+    mass: float
+    vs: float
+    target: Target | None = None
+    mu: float = 0.0
+    ramp_depth: float | None = None
+    sigma_n: object = None
+
+    @property
+    def start(self):
+        """Depth where the tunnel law starts: 4a after a crater, else the surface."""
+        return 4 * self.nose.radius if "crater" in self.names else 0.0
+
+    @property
+    def embed(self):
+        return "nose_entry" in self.names
+
+    @property
+    def friction(self):
+        return self.mu if "friction" in self.names else 0.0
+
+    @cached_property
+    def wetted(self):
+        return wetted(self.nose, self.nstar, self.embed)
+
+    def needs(self, what, by):
+        if getattr(self, what) is None:
+            law = "a target (rho, fc, S)" if what == "target" else "a sigma_n(v) table"
+            raise ParameterError("scene", "effects", by, f"{by} needs {law}, which this level does not give")
+        return getattr(self, what)
+
+
+# Effect name -> builder(shot) returning (force objects, break depths). Registered in
+# the order their forces are summed; assembly loops over this registry.
+EFFECTS = {}
+# Effects that cannot be listed together with the key effect.
+EXCLUDES = {"crater": {"nose_entry", "free_surface_ramp"}, "cavity": {"static", "inertial", "free_surface_ramp"}}
+
+
+def effect(name):
+    """Register the builder of a trajectory effect under ``name``."""
+    def wrap(fn):
+        EFFECTS[name] = fn
+        return fn
+    return wrap
+
+
+@effect("crater")
+def _crater(shot):
+    """F = c z up to z = 4a (Eq 8); c from continuity with the tunnel force at 4a."""
+    a = shot.nose.radius
+    if "cavity" in shot.names:
+        surface = nose_surface(shot.nose)
+        sigma = shot.needs("sigma_n", "crater")
+        c = cavity_crater_coefficient(shot.mass, a, shot.vs, lambda v: nose_force(surface, v, sigma, shot.friction))
+    else:
+        c = crater_coefficient(shot.mass, a, shot.nstar, shot.needs("target", "crater"), shot.vs)
+    return (Crater(float(c), 4 * a),), (4 * a,)
+
+
+@effect("nose_entry")
+def _nose_entry(shot):
+    """No force of its own: the other effects load only the wetted nose until it is embedded."""
+    return (), (shot.start + shot.nose.length,)
+
+
+@effect("static")
+def _static(shot):
+    return (Static(shot.needs("target", "static").R, shot.wetted, shot.start),), ()
+
+
+@effect("inertial")
+def _inertial(shot):
+    return (Inertial(shot.needs("target", "inertial").rho, shot.wetted, shot.start),), ()
+
+
+@effect("friction")
+def _friction(shot):
+    """Beside Eq 7's terms, mu times their normal stress; at the cavity level it is folded into ``cavity``."""
+    if "cavity" in shot.names or shot.mu <= 0:
+        return (), ()
+    law = forrestal_stress(shot.needs("target", "friction"))
+    return (SurfaceLoad(nose_surface(shot.nose), law, shot.mu, shot.embed, shot.start, normal=False),), ()
+
+
+@effect("free_surface_ramp")
+def _free_surface_ramp(shot):
+    depth = 4 * shot.nose.radius if shot.ramp_depth is None else shot.ramp_depth
+    ramp = FreeSurfaceRamp(shot.needs("target", "free_surface_ramp").R, shot.wetted, depth, shot.start)
+    return (ramp,), (shot.start + depth,)
+
+
+@effect("cavity")
+def _cavity(shot):
+    """The tabulated sigma_n(v_n) over the (wetted) nose, friction included when listed."""
+    sigma = shot.needs("sigma_n", "cavity")
+    return (SurfaceLoad(nose_surface(shot.nose), sigma, shot.friction, shot.embed, shot.start),), ()
+
+
+def assemble(names, nose, nstar, mass, target: Target | None, vs, mu=0.0, ramp_depth=None, sigma_n=None) -> Assembly:
+    """Effect objects for the listed effect names (see the module docstring and EFFECTS).
 
     ``cavity`` integrates the tabulated ``sigma_n(v_n)`` of the cavity-expansion
-    level over the nose (friction included when ``friction`` is listed) and
-    replaces ``static`` and ``inertial``.
+    level over the nose and replaces ``static`` and ``inertial``; ``target``
+    may be None when no listed effect needs Eq 7's target.
     """
-    unknown = [n for n in names if n not in EFFECTS]
+    listed = set(names)
+    unknown = sorted(listed - set(EFFECTS))
     if unknown:
         raise ParameterError("scene", "effects", unknown, f"names among {list(EFFECTS)}")
-    if "crater" in names and ({"nose_entry", "free_surface_ramp"} & set(names)):
-        raise ParameterError("scene", "effects", list(names),
-                             "crater replaces the entry model: not together with nose_entry or free_surface_ramp")
-    a = nose.radius
-    embed = "nose_entry" in names
-    if "cavity" in names:
-        return _assemble_cavity(names, nose, mass, vs, mu, sigma_n, embed)
-    wet = wetted(nose, nstar, embed)
-    start, effects, breaks = 0.0, [], []
-    if "crater" in names:
-        start = 4 * a
-        effects.append(Crater(float(crater_coefficient(mass, a, nstar, target, vs)), start))
-        breaks.append(start)
-    if embed:
-        breaks.append(start + nose.length)
-    if "static" in names:
-        effects.append(Static(target.R, wet, start))
-    if "inertial" in names:
-        effects.append(Inertial(target.rho, wet, start))
-    if "friction" in names and mu > 0:
-        effects.append(SurfaceLoad(nose_surface(nose), forrestal_stress(target), mu, embed, start, normal=False))
-    if "free_surface_ramp" in names:
-        depth = 4 * a if ramp_depth is None else ramp_depth
-        effects.append(FreeSurfaceRamp(target.R, wet, depth, start))
-        breaks.append(start + depth)
-    return Assembly(tuple(effects), tuple(sorted(set(breaks))))
-
-
-def _assemble_cavity(names, nose, mass, vs, mu, sigma_n, embed):
-    if sigma_n is None:
-        raise ParameterError("scene", "level", "cavity", "a sigma_n(v) table for the cavity effect")
-    if {"static", "inertial", "free_surface_ramp"} & set(names):
-        raise ParameterError("scene", "effects", list(names), "cavity replaces static, inertial and the ramp")
-    surface = nose_surface(nose)
-    friction = mu if "friction" in names else 0.0
-    effects, breaks, start = [], [], 0.0
-    if "crater" in names:
-        start = 4 * nose.radius
-        full = lambda v: nose_force(surface, v, sigma_n, friction)
-        effects.append(Crater(float(cavity_crater_coefficient(mass, nose.radius, vs, full)), start))
-        breaks.append(start)
-    if embed:
-        breaks.append(start + nose.length)
-    effects.append(SurfaceLoad(surface, sigma_n, friction, embed, start))
-    return Assembly(tuple(effects), tuple(sorted(set(breaks))))
+    for key, clash in EXCLUDES.items():
+        if key in listed and clash & listed:
+            raise ParameterError("scene", "effects", list(names), f"{key} is not allowed with {sorted(clash & listed)}")
+    shot = Shot(frozenset(listed), nose, nstar, mass, vs, target, mu, ramp_depth, sigma_n)
+    forces, breaks = [], []
+    for name, build in EFFECTS.items():
+        if name in listed:
+            f, b = build(shot)
+            forces += f
+            breaks += b
+    return Assembly(tuple(forces), tuple(sorted(set(breaks))))
 
 
 @dataclass(frozen=True)

@@ -1,9 +1,10 @@
 # The diff of every reproduced number against the paper, and the check that
-# nothing drifted from the committed results.
+# nothing drifted from the committed results beyond the tolerance of its precision.
+
 
 rule diff:
     input:
-        f"{SRC}reference.py", f"{SRC}tasks.py",
+        **task("tasks.reference"),
         reference=config["reference"],
         findings=config["findings"],
         noses="results/nstar/noses.csv",
@@ -19,25 +20,20 @@ rule diff:
         cavity_do1="results/scenes/cavity/do1.csv",
         cal_cavity="results/calibration/cavity_do1.json",
         sensitivity="figures/cavity_table3_sensitivity.csv",
-    output:
-        diff="figures/diff.csv",
-        summary="figures/diff_summary.md",
-    log:
-        "results/logs/diff.log",
-    script:
-        "../scripts/run_task.py"
+    output: diff="figures/diff.csv", summary="figures/diff_summary.md",
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/diff.tsv"
+    log: "results/logs/diff.log",
+    script: "../scripts/run_task.py"
 
 
 rule reproduce_check:
-    input:
-        csvs=expand("figures/{f}.csv", f=FIGURES + TABLES + ["validation", "do1_family_sensitivity", "cavity_table3_sensitivity"]),
-        diff="figures/diff.csv",
-    output:
-        report="results/check/reproduce_check.txt",
-    params:
-        rtol=config["check"]["rtol"],
-        atol=config["check"]["atol"],
-    log:
-        "results/logs/reproduce_check.log",
-    script:
-        "../scripts/run_task.py"
+    input: **task("tasks.reference"), outputs=list(config["check"]["outputs"]), diff="figures/diff.csv",
+    output: report="results/check/reproduce_check.txt",
+    params: check=config["check"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/reproduce_check.tsv"
+    log: "results/logs/reproduce_check.log",
+    script: "../scripts/run_task.py"

@@ -1,4 +1,4 @@
-"""Run the package task named after the calling Snakemake rule.
+"""Run the task of the calling Snakemake rule (the function of the rule's name in its task module).
 
 Output goes both to the terminal and to the rule's log file.
 """
@@ -23,4 +23,4 @@ class Tee:
 
 with open(snakemake.log[0], "w") as log:  # noqa: F821
     with contextlib.redirect_stdout(Tee(sys.stdout, log)), contextlib.redirect_stderr(Tee(sys.stderr, log)):
-        run(snakemake.rule, snakemake.input, snakemake.output, snakemake.params)  # noqa: F821
+        run(snakemake.rule, snakemake.input.task, snakemake.input, snakemake.output, snakemake.params)  # noqa: F821

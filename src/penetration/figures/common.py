@@ -6,7 +6,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from ..tasks import atomic_path  # noqa: E402
+from ..io import atomic  # noqa: E402
 
 PAPER_STYLE = dict(color="black", linestyle="none", marker="x", markersize=8, mew=1.6)
 NOSE_COLORS = {"crh3": "tab:red", "crh5": "tab:blue", "crh45": "tab:blue", "double_ogive": "tab:green",
@@ -20,10 +20,11 @@ def figure(ncols=1, width=6.4, height=4.2):
 
 
 def save(fig, path, dpi):
-    tmp, commit = atomic_path(path)
-    fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format="png", metadata={"Software": None})
-    plt.close(fig)
-    commit()
+    try:
+        with atomic(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format="png", metadata={"Software": None})
+    finally:
+        plt.close(fig)
 
 
 def color(name):

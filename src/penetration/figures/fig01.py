@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..tasks import task, write_csv
+from ..io import task, write_csv
 from ..units import MPA
 from .common import figure, save
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 import pandas as pd
 
 from ..reference import load_reference
-from ..tasks import task, write_csv
+from ..io import task, write_csv
 from .common import PAPER_STYLE, figure, save
 
 

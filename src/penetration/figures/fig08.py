@@ -1,4 +1,4 @@
-"""Figs 8 and 9: deceleration and Pd/d histories of the 450 kg projectiles.
+"""Fig 8: deceleration histories of the 450 kg projectiles (Fig 9 draws Pd/d with the same panels).
 
 Solid lines use the inferred diameter; thin dashed lines the ends of its
 inferred interval (the sensitivity of the figure to that inference).
@@ -7,15 +7,14 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..reference import load_reference
-from ..tasks import task, write_csv
+from ..io import task, write_csv
 from ..units import G0
 from .common import color, figure, save
 
 LABELS = {"crh3": "CRH 3", "double_ogive": "double ogive", "crh5": "CRH 5"}
 
 
-def _panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None):
+def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None):
     vel = sorted(hist.velocity.unique())
     fig, axes = figure(len(vel), 5.0, 3.8)
     for ax, v in zip(axes, vel):
@@ -39,17 +38,4 @@ def fig08(inputs, outputs, params):
     dop = pd.read_csv(inputs.dop)
     hist["deceleration_g"] = hist.deceleration / G0
     write_csv(hist[["nose", "radius_case", "velocity", "t", "deceleration_g"]], outputs.csv)
-    _panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8")
-
-
-@task
-def fig09(inputs, outputs, params):
-    hist = pd.read_csv(inputs.histories)
-    dop = pd.read_csv(inputs.dop)
-    refs = load_reference(inputs.reference)
-    d = 2 * dop.drop_duplicates(["nose", "radius_case"]).set_index(["nose", "radius_case"]).radius
-    hist["pd_over_d"] = hist.z / [d[(n, c)] for n, c in zip(hist.nose, hist.radius_case)]
-    write_csv(hist[["nose", "radius_case", "velocity", "t", "pd_over_d"]], outputs.csv)
-    axis = {v: (refs[f"fig09.t_axis_max.{v:.0f}"].value, refs[f"fig09.pd_axis_max.{v:.0f}"].value)
-            for v in hist.velocity.unique()}
-    _panels(hist, dop, "pd_over_d", outputs, params, "Pd/d", "Fig 9", axis)
+    panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8")

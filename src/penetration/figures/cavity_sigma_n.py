@@ -1,19 +1,17 @@
 """The cavity-expansion law sigma_n(v) of HJC concrete, with the Eq 7 forms beside it."""
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pandas as pd
 
-from ..tasks import task, write_csv
+from ..io import load_json, task, write_csv
 from .common import figure, save
 
 
 @task
 def cavity_sigma_n(inputs, outputs, params):
     table = pd.read_csv(inputs.sigma)
-    cal = json.load(open(inputs.cal_do1))
+    cal = load_json(inputs.cal_do1)
     write_csv(table, outputs.csv)
     fig, (ax,) = figure(1, 6.0, 4.2)
     for (label, g), c in zip(table.groupby("material", sort=False), ("tab:green", "tab:gray")):

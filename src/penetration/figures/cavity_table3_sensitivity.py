@@ -3,14 +3,14 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..tasks import task, write_csv
+from ..io import task, write_csv
 from .common import figure, save
 
 NOSE_LABELS = {"double_ogive": "DO", "crh45": "CRH 4.5", "crh3": "CRH 3"}
 
 
 @task
-def cavity_table3_sensitivity_figure(inputs, outputs, params):
+def cavity_table3_sensitivity(inputs, outputs, params):
     data = pd.read_csv(inputs.csv)
     write_csv(data, outputs.csv)
     cells = data[["velocity", "nose"]].drop_duplicates().reset_index(drop=True)

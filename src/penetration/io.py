@@ -1,0 +1,124 @@
+"""File I/O shared by the task and figure modules: atomic writes, CSV/JSON, nose records.
+
+Every write goes to a temporary sibling first and is renamed over the
+target only when complete, so an interrupted job never leaves a
+half-written output. New files get ordinary permissions (0666 minus the
+umask), as any file the user creates would.
+
+``task`` marks the functions that Snakemake rules call (one per rule, named
+after it); ``penetration.pipeline`` finds them by module and name.
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import json
+import os
+import secrets
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .geometry import make_nose
+
+TASKS = {}
+
+
+def task(fn):
+    """Mark ``fn`` as the task of the rule of the same name."""
+    TASKS[fn.__name__] = fn
+    return fn
+
+
+# --------------------------------------------------------------- atomic I/O
+@contextmanager
+def atomic(path):
+    """Yield a temporary sibling path; it replaces ``path`` only if the block succeeds."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
+    os.close(os.open(tmp, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))  # mode 0666 minus the umask
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def write_text(path, text):
+    with atomic(path) as tmp:
+        tmp.write_text(text)
+
+
+def write_csv(frame: pd.DataFrame, path):
+    with atomic(path) as tmp:
+        frame.to_csv(tmp, index=False, float_format="%.12g", lineterminator="\n")
+
+
+def write_json(obj, path):
+    write_text(path, json.dumps(obj, indent=2, default=_jsonable) + "\n")
+
+
+def load_json(path):
+    return json.loads(Path(path).read_text())
+
+
+def _jsonable(x):
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    if isinstance(x, np.bool_):
+        return bool(x)
+    raise TypeError(f"cannot serialise {type(x)}")
+
+
+# -------------------------------------------------------------- nose records
+def nose_record(nose) -> dict:
+    """Kind and parameters of a nose, enough to rebuild it with make_nose."""
+    return {"kind": nose.kind, "params": {f.name: getattr(nose, f.name) for f in dataclasses.fields(nose)}}
+
+
+def nose_from_record(rec):
+    return make_nose(rec["kind"], **rec["params"])
+
+
+def read_inference(path):
+    """An inference result file: the dict written by the infer_* tasks, with its nose rebuilt."""
+    data = load_json(path)
+    data["nose"] = nose_from_record(data["nose"])
+    return data
+
+
+def read_noses(path) -> dict:
+    """Name -> nose from the noses table written by the ``geometry`` task."""
+    table = pd.read_csv(path)
+    return {r.name: make_nose(r.kind, **json.loads(r.params)) for r in table.itertuples()}
+
+
+# ------------------------------------------------------------------ CSV rows
+def read_rows(path):
+    """(header fields, rows as dicts) of a CSV file; fields beyond the header sit under the key None.
+
+    Raises ValueError naming the file when it is not UTF-8 text or has no header.
+    """
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            reader = csv.DictReader(fh)
+            rows, fields = list(reader), list(reader.fieldnames or [])
+    except UnicodeDecodeError:
+        raise ValueError(f"{path} is not a UTF-8 text CSV file") from None
+    except csv.Error as err:
+        raise ValueError(f"{path} is not a readable CSV file: {err}") from None
+    if not fields:
+        raise ValueError(f"{path} is empty: a header row and at least one shot are needed")
+    return fields, rows
+
+
+def write_rows(path, fields, rows):
+    """Write dict rows under the header ``fields`` (atomically)."""
+    with atomic(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, fieldnames=fields, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)

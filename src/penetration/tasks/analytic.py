@@ -1,0 +1,90 @@
+"""Tasks of the analytic stage: Eq 9 calibrations and inferences, Fig 1 shares, validation predictions."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .. import reference
+from ..calibration import calibrate_strength, fit_strength, infer_diameter, resistance_shares as shares
+from ..geometry import Ogive
+from ..io import read_rows, task, write_csv, write_json, write_rows
+from ..nstar import nstar
+from ..resistance import Target, strength_factor
+from ..shots import predict_rows
+from .common import PLAIN, scene_from_inputs
+
+
+@task
+def calibrate_do1(inputs, outputs, params):
+    """S fitted so that Eq 9 gives the measured DO1 depth (Table 2)."""
+    refs = reference.load_reference(inputs.reference)
+    sc = scene_from_inputs(inputs, PLAIN)
+    nose = sc.noses["double_ogive"]
+    depth, vs = refs[params.shot["depth"]].si, refs[params.shot["velocity"]].si
+    fit = calibrate_strength(sc.mass, sc.radius, nstar(nose), sc.target.rho, sc.target.fc, vs, depth)
+    stated = float(strength_factor(sc.target.fc, "li_chen"))
+    write_json({"calibration": "do1", "fitted_quantity": "S, static resistance factor (A of Eq 6; S fc is the static resistance)",
+                "data": {"mass": sc.mass, "radius": sc.radius, "nstar": nstar(nose), "rho": sc.target.rho,
+                         "fc": sc.target.fc, "vs": vs, "measured_depth": depth,
+                         "sources": [refs[params.shot[q]].source for q in ("depth", "velocity")]},
+                "model": "Eq 9 (Forrestal crater + tunnel), nose inferred from Table 4",
+                "S_stated_li_chen": stated, "S_ratio_to_stated": fit["S"] / stated, **fit}, outputs.json)
+
+
+@task
+def calibrate_table3_calc(inputs, outputs, params):
+    """S fitted by least squares to Table 3's 12 calculated DOPs."""
+    refs = reference.load_reference(inputs.reference)
+    sc = scene_from_inputs(inputs, PLAIN)
+    cells = []
+    for v in reference.VELOCITIES:
+        for n in reference.TABLE3_NOSES:
+            ref = refs[f"table3.calc.{v}.{n}"]
+            cells.append({"velocity": v, "nose": n, "mass": sc.mass, "radius": sc.radius,
+                          "nstar": nstar(sc.noses[n]), "vs": float(v), "depth": ref.si, "id": ref.id})
+    fit = fit_strength(cells, sc.target.rho, sc.target.fc)
+    for c, r in zip(cells, fit["relative_residuals"]):
+        c["relative_residual"] = r
+    write_json({"calibration": "table3_calc", "fitted_quantity": "S (one value for all 12 cells)",
+                "model": "Eq 9", "cells": cells, **{k: v for k, v in fit.items() if k != "relative_residuals"}},
+               outputs.json)
+
+
+@task
+def infer_diameter_450kg(inputs, outputs, params):
+    """Diameter of the 450 kg projectiles from Fig 9's Pd/d axis ranges."""
+    refs = reference.load_reference(inputs.reference)
+    sc = scene_from_inputs(inputs, PLAIN, placeholder_diameter=1.0)
+    n = nstar(sc.noses[params.nose])
+    axes = [(a["velocity"], refs[a["top"]].value - a["tick"], refs[a["top"]].value) for a in params.axes]
+    out = infer_diameter(sc.mass, n, sc.target, axes)
+    out.update(rule="Pd/d of the deepest nose lies in the top tick interval of each Fig 9 panel",
+               nose=params.nose, nstar=n, axes=[{"velocity": v, "lower": lo, "upper": hi} for v, lo, hi in axes],
+               model="Eq 9 with the scene's target (S from its stated law)")
+    write_json(out, outputs.json)
+
+
+@task
+def resistance_shares(inputs, outputs, params):
+    """Static and inertial shares of Eq 7 against velocity (Fig 1b)."""
+    cfg = params.cfg
+    n = nstar(Ogive(cfg["psi"], 1.0))
+    v = np.linspace(0.0, cfg["v_max"], 151)
+    rows = []
+    for fc in cfg["strengths"]:
+        tg = Target(cfg["rho"], fc, float(strength_factor(fc, cfg["law"])))
+        st, ine = shares(n, tg, v)
+        rows.append(pd.DataFrame({"fc": fc, "S": tg.S, "nstar": n, "velocity": v, "static_share": st,
+                                  "inertial_share": ine}))
+    write_csv(pd.concat(rows, ignore_index=True), outputs.csv)
+
+
+@task
+def validation_predictions(inputs, outputs, params):
+    """Eq 9 depth of every development shot, S from the configured published law."""
+    fields, rows = read_rows(inputs.shots)
+    good, problems = predict_rows(rows, params.law)
+    print(f"predicted {len(good)} shots; skipped {len(problems)}")
+    for p in problems:
+        print(p)
+    write_rows(outputs.csv, fields + ["dop_pred_m"], good)

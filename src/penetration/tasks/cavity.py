@@ -1,0 +1,154 @@
+"""Tasks of the HJC and cavity stages: EOS paths, DO1 calibration, sigma_n tables, cavity-level scenes."""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+import pandas as pd
+
+from .. import reference
+from ..cavity import Controls, Mesh
+from ..cavity_level import SigmaTable, calibrate_parameter, cavity_trajectory, material_switches, sigma_table
+from ..hjc import PointState, drive, from_table1
+from ..hjc_effects import MATERIAL_EFFECTS
+from ..io import load_json, read_inference, task, write_csv, write_json
+from ..nstar import nstar
+from ..resistance import nose_surface
+from .common import CAVITY, scene_from_inputs
+
+CONVENTIONS = ("lock", "tension", "rate_floor")
+
+
+def table1_hjc(refs, **fields):
+    """HJC of the paper's Table 1 (reference values by id), with ``fields`` set on it."""
+    return from_table1(lambda quantity: refs[f"table1.{quantity}"].si, **fields)
+
+
+def cavity_settings(cfg):
+    """Mesh and solver controls of the cavity solver from the ``cavity`` config slice."""
+    return (Mesh(zones=cfg["zones"], cap=cfg["cap"]),
+            Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"]))
+
+
+def configured_hjc(refs, cfg, **fields):
+    """Table 1 HJC with the configured conventions; ``fields`` set any other field (e.g. strength_scale)."""
+    return table1_hjc(refs, **{**{k: cfg[k] for k in CONVENTIONS}, **fields})
+
+
+def do1_shot(refs, ids):
+    """Mass, striking velocity and measured depth of the DO1 shot from the reference ids in ``ids``."""
+    return tuple(refs[ids[q]].si for q in ("mass", "velocity", "depth"))
+
+
+def read_sigma_table(path, material="calibrated"):
+    t = pd.read_csv(path)
+    t = t[t.material == material].sort_values("velocity")
+    return SigmaTable(t.velocity.to_numpy(), t.sigma_n.to_numpy(), t.extrapolated.to_numpy())
+
+
+def calibrated_context(inputs, params):
+    """Reference values, cavity config, mesh, controls and the DO1-calibrated strength scale of a rule."""
+    cfg = params.cfg
+    mesh, controls = cavity_settings(cfg)
+    return reference.load_reference(inputs.reference), cfg, mesh, controls, load_json(inputs.cal)["strength_scale"]
+
+
+@task
+def hjc_eos_paths(inputs, outputs, params):
+    """Hydrostatic load-unload paths of the HJC equation of state (Fig 10 data)."""
+    refs = reference.load_reference(inputs.reference)
+    rows = []
+    for lock in ("offset", "literal"):
+        mat = table1_hjc(refs, lock=lock)
+        virgin = _hydro_path(mat, PointState.new(), params.mu_top, params.steps)
+        rows.append(pd.DataFrame({"lock": lock, "path": "loading", "mu": virgin["mu"], "p": virgin["p"]}))
+        for mu_max in params.unload_from:
+            st = PointState.new()
+            _hydro_path(mat, st, mu_max, params.steps)
+            back = _hydro_path(mat, st, params.unload_to, params.steps)
+            rows.append(pd.DataFrame({"lock": lock, "path": f"unload from {mu_max:g}", "mu": back["mu"],
+                                      "p": back["p"]}))
+    write_csv(pd.concat(rows, ignore_index=True), outputs.csv)
+
+
+def _hydro_path(mat, state, mu_target, steps):
+    """Drive a point hydrostatically from its current volume to mu_target."""
+    de = (-math.log(1 + mu_target) - state.strain[:3].sum()) / steps / 3
+    out, _ = drive(mat, np.tile([de, de, de, 0, 0, 0], (steps, 1)), state=state)
+    return out
+
+
+@task
+def calibrate_cavity_do1(inputs, outputs, params):
+    """HJC strength scale that makes the cavity-level DO1 trajectory reach the measured depth."""
+    refs = reference.load_reference(inputs.reference)
+    cfg = params.cfg
+    mesh, controls = cavity_settings(cfg)
+    nose = read_inference(inputs.do1)["nose"]
+    mass, vs, depth = do1_shot(refs, params.shot)
+    t0 = time.perf_counter()
+    fit = calibrate_parameter(configured_hjc(refs, cfg), "strength_scale", nose, mass, vs, depth, cfg["velocities"],
+                              nose.radius, tuple(cfg["effects"]), 0.0, mesh, controls)
+    write_json({"calibration": "cavity_do1", "fitted_quantity": "HJC strength_scale: factor on the whole strength "
+                "surface, the in-situ strength of the target relative to the laboratory set of Table 1 (the "
+                "counterpart of the paper's calibrated erosion strain fs: both weaken the target)",
+                "data": {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1",
+                         "effects": cfg["effects"]},
+                "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
+
+
+@task
+def cavity_table(inputs, outputs, params):
+    """sigma_n(v) of the calibrated HJC target (and the uncalibrated one) with solver statistics."""
+    refs, cfg, mesh, controls, scale = calibrated_context(inputs, params)
+    rows = []
+    for label, s in (("calibrated", scale), ("table1", 1.0)):
+        t0 = time.perf_counter()
+        table, results = sigma_table(configured_hjc(refs, cfg, strength_scale=s), cfg["velocities"], params.radius,
+                                     mesh, controls)
+        cost = time.perf_counter() - t0
+        stats = [None] + results
+        for v, sig, ex, r in zip(table.v, table.sigma, table.extrapolated, stats):
+            rows.append({"material": label, "strength_scale": s, "velocity": v, "sigma_n": sig, "extrapolated": bool(ex),
+                         "cycles": r.cycles if r else 0, "converged": bool(r.converged) if r else False})
+        print(f"{label}: table of {len(results)} velocities in {cost:.2f} s")
+    write_csv(pd.DataFrame(rows), outputs.csv)
+
+
+@task
+def scene_cavity(inputs, outputs, params):
+    """A cavity-level scene: depth and histories of every nose and velocity.
+
+    The material effects strain_rate, damage and strength_cap switch the HJC
+    terms; a scene that turns any of them off (or picks another lock or
+    tension convention) gets its own sigma_n table at the calibrated
+    strength scale.
+    """
+    sc = scene_from_inputs(inputs, CAVITY)
+    switches = material_switches(sc.effects, sc.material, params.cfg)
+    if switches:
+        refs, cfg, mesh, controls, scale = calibrated_context(inputs, params)
+        mat = configured_hjc(refs, cfg, strength_scale=scale, **switches)
+        table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
+        print(f"own sigma_n table for switches {switches}")
+    else:
+        table = read_sigma_table(inputs.sigma)
+    effects = tuple(e for e in sc.effects if e not in MATERIAL_EFFECTS)
+    rows, hist = [], []
+    for name, nose in sc.noses.items():
+        steepest = nose_surface(nose).sin_beta.max()
+        for v in sc.velocities:
+            tr = cavity_trajectory(nose, sc.mass, v, table, effects, sc.friction, params.rtol)
+            rows.append({"scene": sc.name, "nose": name, "nstar": nstar(nose), "velocity": v, "cavity_dop": tr.depth,
+                         "dop_over_d": tr.depth / (2 * nose.radius), "duration": tr.duration,
+                         "peak_deceleration": float(tr.deceleration.max()),
+                         # largest normal stress on the nose (at impact, where the surface is steepest):
+                         # beyond the projectile's yield strength the rigid-body assumption fails
+                         "peak_nose_stress": float(table(v * steepest)),
+                         "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0})
+            hist.append(pd.DataFrame({"nose": name, "velocity": v, "t": tr.t, "z": tr.z, "v": tr.v,
+                                      "deceleration": tr.deceleration}))
+    write_csv(pd.DataFrame(rows), outputs.dop)
+    write_csv(pd.concat(hist, ignore_index=True), outputs.histories)

@@ -1,0 +1,184 @@
+"""Tasks of the reference stage: the diff against the paper and the reproduction check.
+
+The reproduction check compares every committed output CSV listed in the
+config's ``check.outputs`` with the one the pipeline just made. Each column
+is compared with the tolerance of its precision class: a value passes when
+|now - committed| <= factor * (atol + rtol |committed| + scale max|committed column|),
+where (rtol, atol, scale) is what the producer of the column guarantees
+(``check.precision``) and ``factor`` the margin. Text columns must match.
+"""
+from __future__ import annotations
+
+import dataclasses
+import io as stdio
+import subprocess
+
+import numpy as np
+import pandas as pd
+
+from .. import reference
+from ..io import load_json, task, write_csv, write_text
+
+
+def _bands_dict(path, noses_table):
+    table = pd.read_csv(path)
+    out = {r.convention: {"lo": r.lo, "hi": r.hi, "peak_x": r.peak_x_over_b, "peak_k": r.peak_k}
+           for r in table.itertuples()}
+    out["adopted"] = table.loc[table.adopted, "convention"].iloc[0]
+    out["nstar_crh3"] = float(noses_table.set_index("name").loc["fig4_crh3", "nstar"])
+    return out
+
+
+def _erosion_fit(path):
+    """The erosion_strain calibrated on DO1 in the cavity-level sensitivity table (None if absent)."""
+    t = pd.read_csv(path)
+    t = t[t.calibrated == "erosion_strain"]
+    return float(t.value.iloc[0]) if len(t) else None
+
+
+def _model_rows(refs, inputs):
+    """Diff rows of the DOP and simulation stages: Table 3, DO1, Figs 1, 8, 9, 15."""
+    fit = load_json(inputs.fit_calc)
+    cal = load_json(inputs.cal_do1)
+    do1 = pd.read_csv(inputs.do1_scene).iloc[0]
+    sec = pd.read_csv(inputs.sec22)
+    sec = sec[sec.radius_case == "chosen"]
+    sec22 = {(r.nose, r.velocity): {"peak": r.peak_deceleration, "dop": r.trajectory_dop, "duration": r.duration}
+             for r in sec.itertuples()}
+    d_do1 = 2 * cal["data"]["radius"]
+    calibrated_pd = (cal["data"]["measured_depth"] + cal["residual_m"]) / d_do1
+    table3 = pd.read_csv(inputs.table3).to_dict("records")
+    return (reference.table3_model_rows(refs, table3, fit["cells"])
+            + reference.experiment_rows(refs, do1.trajectory_dop, cal["S"])
+            + reference.ordering_rows(refs, sec22)
+            + reference.fig01_rows(refs, pd.read_csv(inputs.shares).to_dict("records"))
+            + reference.fig15_rows(refs, pd.read_csv(inputs.fig15).to_dict("records"), do1.trajectory_dop / d_do1,
+                                   calibrated_pd)
+            + reference.cavity_rows(refs, table3, pd.read_csv(inputs.cavity_table3).to_dict("records"),
+                                    float(pd.read_csv(inputs.cavity_do1).cavity_dop.iloc[0]),
+                                    load_json(inputs.cal_cavity)["strength_scale"], _erosion_fit(inputs.sensitivity)))
+
+
+class _Tracking(dict):
+    """Dict that remembers which keys were read (to list pending references)."""
+
+    def __init__(self, *a):
+        super().__init__(*a)
+        self.used = set()
+
+    def __getitem__(self, key):
+        self.used.add(key)
+        return super().__getitem__(key)
+
+
+@task
+def diff(inputs, outputs, params):
+    """figures/diff.csv and its human-readable summary."""
+    refs = _Tracking(reference.load_reference(inputs.reference))
+    table = pd.read_csv(inputs.noses)
+    by = table.set_index("name")
+    ours = {f"nstar.{n}": float(by.loc[n, "nstar"]) for n in by.index}
+    ours.update({f"mass.{n}": float(by.loc[n, "mass"]) for n in by.index})
+    rows = (reference.table1_rows(refs) + reference.table3_rows(refs) + reference.table4_rows(refs, ours)
+            + reference.fig03_rows(refs, _bands_dict(inputs.bands, table)) + reference.fig05_rows(refs, ours)
+            + _model_rows(refs, inputs))
+    frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=reference.COLUMNS)
+    write_csv(frame, outputs.diff)
+    findings = pd.read_csv(inputs.findings).to_dict("records")
+    pending = sorted(set(refs) - refs.used)
+    write_text(outputs.summary, reference.summary(rows, findings, pending))
+
+
+# --------------------------------------------------------- reproduction check
+def column_tolerances(spec, precision, factor, columns):
+    """Column -> (rtol, atol, scale) for one output from its spec in ``check.outputs``.
+
+    ``spec`` is a precision class name, or {"default": class, "columns": {column: class}}.
+    """
+    if isinstance(spec, str):
+        spec = {"default": spec}
+    named = {c: spec.get("columns", {}).get(c, spec["default"]) for c in columns}
+    unknown = sorted({n for n in list(named.values()) + [spec["default"]] if n not in precision})
+    if unknown:
+        raise KeyError(f"check.outputs names precision classes {unknown}; defined: {sorted(precision)}")
+    return {c: tuple(factor * precision[n].get(k, 0.0) for k in ("rtol", "atol", "scale")) for c, n in named.items()}
+
+
+def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances):
+    """Reason why two CSV tables differ beyond the per-column tolerances, or None."""
+    if list(new.columns) != list(old.columns):
+        return f"columns changed: {list(old.columns)} -> {list(new.columns)}"
+    if len(new) != len(old):
+        return f"row count changed: {len(old)} -> {len(new)}"
+    for col in new.columns:
+        a, b = new[col], old[col]
+        if pd.api.types.is_numeric_dtype(a) and pd.api.types.is_numeric_dtype(b):
+            rtol, atol, scale = tolerances[col]
+            x, y = a.to_numpy(float), b.to_numpy(float)
+            finite = np.isfinite(y)
+            big = float(np.max(np.abs(y[finite]))) if finite.any() else 0.0
+            allowed = atol + rtol * np.abs(y) + scale * big
+            same = (np.abs(x - y) <= allowed) | (np.isnan(x) & np.isnan(y)) | (x == y)
+            if not same.all():
+                i = int(np.argmax(~same))
+                return (f"column {col} row {i + 2}: committed {y[i]!r}, now {x[i]!r} "
+                        f"(|difference| {abs(x[i] - y[i]):.3g} > allowed {allowed[i]:.3g})")
+        elif not a.astype(str).equals(b.astype(str)):
+            i = int(np.argmax((a.astype(str) != b.astype(str)).to_numpy()))
+            return f"column {col} row {i + 2}: committed {b.iloc[i]!r}, now {a.iloc[i]!r}"
+    return None
+
+
+def _committed(path):
+    """Text of ``path`` at git HEAD, or None when not tracked or no git."""
+    try:
+        out = subprocess.run(["git", "show", f"HEAD:{path}"], capture_output=True, text=True, check=False)
+    except OSError:
+        return None
+    return out.stdout if out.returncode == 0 else None
+
+
+def reproduction_problems(outputs, diff_path, check):
+    """(problems, number of files compared): drifted output CSVs and lost 'reproduced' diff rows.
+
+    ``outputs``: the paths to compare (keys of ``check["outputs"]``); ``check``:
+    the config's check section (factor, precision classes, outputs).
+    """
+    problems, compared = [], 0
+    for path in outputs:
+        text = _committed(path)
+        if text is None:
+            continue
+        compared += 1
+        new, old = pd.read_csv(path), pd.read_csv(stdio.StringIO(text))
+        tol = column_tolerances(check["outputs"][path], check["precision"], check["factor"], new.columns)
+        why = frames_differ(new, old, tol)
+        if why:
+            problems.append(f"{path}: no longer matches the committed file: {why}")
+    old = _committed(diff_path)
+    if old is not None:
+        key = ["item", "quantity", "case"]
+        was = pd.read_csv(stdio.StringIO(old))
+        now = pd.read_csv(diff_path).set_index(key)["status"]
+        for r in was[was.status == "reproduced"].itertuples():
+            status = now.get((r.item, r.quantity, r.case), "missing")
+            if status != "reproduced":
+                problems.append(f"{diff_path}: {r.item} / {r.quantity} / {r.case} was reproduced, now {status}")
+    return problems, compared
+
+
+@task
+def reproduce_check(inputs, outputs, params):
+    """Fail when a committed output CSV or a reproduced diff row has drifted beyond its tolerance."""
+    problems, compared = reproduction_problems(list(params.check["outputs"]), inputs.diff, params.check)
+    report = [f"compared {compared} committed CSV files (tolerance factor {params.check['factor']:g} on the "
+              f"precision class of each column, config check.outputs)"]
+    if compared == 0:
+        report.append("warning: no committed copies found (not a git checkout?); only the current diff was checked")
+    now = pd.read_csv(inputs.diff)
+    report.append("diff status counts: " + ", ".join(f"{s} {int((now.status == s).sum())}" for s in reference.STATUSES))
+    report += problems
+    print("\n".join(report))
+    if problems:
+        raise SystemExit(f"reproduction check failed: {len(problems)} problem(s)")
+    write_text(outputs.report, "\n".join(report) + "\n")

@@ -1,0 +1,161 @@
+"""Bad input never passes silently: each case is a clear error (field, value, allowed range), nothing written.
+
+The command line exits with status 2; scene and config errors name the file
+and the field before any computation starts.
+"""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from penetration.config import ConfigError, check_config
+from penetration.scenes import SceneError, read_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE_SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
+SHOTS = ROOT / "workflow/data/experiments-dev.csv"
+
+
+def cli(*args, cwd=ROOT):
+    return subprocess.run([sys.executable, "-m", "penetration", *args], capture_output=True, text=True, cwd=cwd,
+                          env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+
+
+# ------------------------------------------------------------------ nstar
+@pytest.mark.parametrize("args,needle", [
+    (("ogive", "psi=1e16", "radius=0.07"), "0.5 <= psi <= 1e+06"),
+    (("ogive", "psi=3", "radius=1e300"), "radius <= 1000 m"),
+    (("ogive", "psi=3", "radius=1e-300"), "1e-06 <= radius"),
+    (("ogive", "psi=3", "psi=4", "radius=0.07"), "each key once"),
+    (("cone", "radius=0.07", "length=nan"), "length"),
+    (("double_ogive", "radius=0.07", "S1=1e300", "S2=0.42", "a1=0.0397", "a2=0.0638"), "S1"),
+])
+def test_nstar_out_of_range(args, needle):
+    out = cli("nstar", *args)
+    assert out.returncode == 2 and needle in out.stderr and "allowed" in out.stderr and out.stdout == ""
+
+
+def test_nstar_binary_table(tmp_path):
+    path = tmp_path / "nose.csv"
+    path.write_bytes(bytes(range(256)) * 4)
+    out = cli("nstar", "table", f"path={path}")
+    assert out.returncode == 2 and "UTF-8 text CSV" in out.stderr
+
+
+# ----------------------------------------------------------------- predict
+def shots_file(tmp_path, text):
+    path = tmp_path / "shots.csv"
+    path.write_text(text)
+    return path
+
+
+def header():
+    return SHOTS.read_text().splitlines()[0]
+
+
+def good_row():
+    return SHOTS.read_text().splitlines()[1]
+
+
+def test_predict_refuses_to_overwrite_its_input(tmp_path):
+    path = shots_file(tmp_path, f"{header()}\n{good_row()}\n")
+    before = path.read_text()
+    out = cli("predict", str(path), "--out", str(path))
+    assert out.returncode == 2 and "--out" in out.stderr and path.read_text() == before
+
+
+def test_predict_writes_nothing_when_every_row_is_bad(tmp_path):
+    path = shots_file(tmp_path, f"{header()}\n" + good_row().replace(",ogive,", ",spike,") + "\n")
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 2 and "nose_shape" in out.stderr and "nothing written" in out.stderr
+    assert not (tmp_path / "out.csv").exists()
+
+
+def test_predict_row_with_extra_fields_is_skipped_without_leftovers(tmp_path):
+    path = shots_file(tmp_path, f"{header()}\n{good_row()}\n{good_row()},surplus\n")
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 0 and "row 3" in out.stderr and "the header has" in out.stderr
+    assert len((tmp_path / "out.csv").read_text().splitlines()) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv", "shots.csv"]  # no temporary file left
+
+
+def test_predict_unwritable_out_is_blamed_on_out(tmp_path):
+    path = shots_file(tmp_path, f"{header()}\n{good_row()}\n")
+    out = cli("predict", str(path), "--out", str(tmp_path / "missing" / "dir" / "x.csv" / "y.csv"))
+    blocked = tmp_path / "blocked"
+    blocked.write_text("a file, not a directory")
+    out = cli("predict", str(path), "--out", str(blocked / "out.csv"))
+    assert out.returncode == 2 and "cannot write --out" in out.stderr and "shots file" not in out.stderr
+
+
+@pytest.mark.parametrize("text", ["", "\n"])
+def test_predict_empty_input_writes_nothing(tmp_path, text):
+    path = shots_file(tmp_path, text)
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 2 and "empty" in out.stderr and not (tmp_path / "out.csv").exists()
+
+
+# ------------------------------------------------------------------ scenes
+BASE = yaml.safe_load((ROOT / "workflow/scenes/table3.yaml").read_text())
+
+
+def scene_file(tmp_path, text=None, **changes):
+    data = {**BASE, **changes}
+    path = tmp_path / "scene.yaml"
+    path.write_text(text if text is not None else yaml.safe_dump(data))
+    return path
+
+
+@pytest.mark.parametrize("changes,needle", [
+    ({"velocities": {"start": 800.0, "stop": 500.0, "step": 50.0}}, "stop >= start"),
+    ({"velocities": [float("nan")]}, "finite"),
+    ({"velocities": {"start": 1.0, "stop": 5000.0, "step": 0.001}}, "at most 1000"),
+    ({"velocities": list(range(1, 1200))}, "at most 1000"),
+    ({"level": "fe"}, "level"),
+    ({"effects": ["crater", "static", "inertial", "friction"], "friction": 0.1}, "not used at level analytic"),
+    ({"level": "trajectory", "effects": ["inertial"]}, "needs ['static']"),
+    ({"level": "trajectory", "effects": ["crater", "static", "inertial"], "friction": 0.1}, "friction is set"),
+    ({"level": "trajectory", "effects": ["crater", "static", "inertial", "friction"]}, "friction > 0"),
+    ({"lock": "literal"}, "only at level cavity"),
+    ({"velocities": "fast"}, "a list of a number"),
+])
+def test_scene_errors(tmp_path, changes, needle):
+    with pytest.raises((SceneError, ConfigError)) as err:
+        read_scene(scene_file(tmp_path, **changes), SCENE_SCHEMA, ("analytic", "trajectory"))
+    assert needle in str(err.value) and "allowed" in str(err.value) + needle
+
+
+def test_scene_level_given_twice(tmp_path):
+    text = (ROOT / "workflow/scenes/table3.yaml").read_text() + "level: trajectory\n"
+    with pytest.raises(ConfigError, match="'level' is given twice"):
+        read_scene(scene_file(tmp_path, text=text), SCENE_SCHEMA)
+
+
+def test_cavity_scene_in_a_plain_rule(tmp_path):
+    with pytest.raises(SceneError, match="not run by this rule"):
+        read_scene(ROOT / "workflow/scenes/cavity/table3.yaml", SCENE_SCHEMA, ("analytic", "trajectory"))
+
+
+# ------------------------------------------------------------------ config
+def test_nested_override_strings_become_numbers():
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["figures"] = {"dpi": "130", "points_per_segment": "200"}
+    check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+    assert cfg["figures"] == {"dpi": 130, "points_per_segment": 200}
+
+
+def test_missing_reference_file_is_noticed_at_load(monkeypatch):
+    monkeypatch.chdir(ROOT)
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["reference"] = "workflow/reference/nope.csv"
+    with pytest.raises(ConfigError, match="reference: file 'workflow/reference/nope.csv' does not exist"):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+def test_snakemake_accepts_a_nested_override():
+    out = subprocess.run([sys.executable, "-m", "snakemake", "-n", "-c1", "figures/table1.csv", "--config",
+                          "figures={dpi: 131, points_per_segment: 200}"], capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode == 0, out.stderr

@@ -1,0 +1,175 @@
+"""Rules and tasks correspond one to one, and a rule's code inputs are exactly what its task imports.
+
+The oracle for "what a task imports" is the interpreter itself: each task
+module is imported in a fresh child process and the package modules that
+end up in ``sys.modules`` are its closure (the rules compute theirs by
+reading the source). Editing a module must then re-run exactly the rules
+whose task imports it (and, through their outputs, what depends on them):
+checked with dry runs in a copy of the workflow whose outputs all exist.
+"""
+import importlib
+import json
+import os
+import pkgutil
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SRC = ROOT / "src" / "penetration"
+SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+
+
+def task_modules():
+    """Every task and figure module of the package, by dotted name."""
+    import penetration.figures
+    import penetration.tasks
+    names = []
+    for pkg in (penetration.tasks, penetration.figures):
+        names += [f"{pkg.__name__}.{m.name}" for m in pkgutil.iter_modules(pkg.__path__)]
+    return names
+
+
+def registered_tasks():
+    """Rule name -> dotted module of the function marked with @task."""
+    from penetration.io import TASKS
+    for m in task_modules():
+        importlib.import_module(m)
+    return {name: fn.__module__ for name, fn in TASKS.items()}
+
+
+CLOSURE_SCRIPT = """
+import importlib, json, os, sys
+import numpy, pandas, scipy.optimize, scipy.integrate, scipy.interpolate, matplotlib, numba, yaml, jsonschema
+out = {}
+for name in sys.argv[1:]:
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(r)
+        importlib.import_module(name)
+        mods = sorted(k for k in sys.modules if k == "penetration" or k.startswith("penetration."))
+        os.write(w, json.dumps(mods).encode())
+        os._exit(0)
+    os.close(w)
+    data = b""
+    while chunk := os.read(r, 65536):
+        data += chunk
+    os.waitpid(pid, 0)
+    out[name] = json.loads(data)
+print(json.dumps(out))
+"""
+
+
+@pytest.fixture(scope="module")
+def closures():
+    """Task module -> package modules (as src-relative files) in sys.modules after importing it alone."""
+    mods = sorted(set(registered_tasks().values()))
+    res = subprocess.run([sys.executable, "-c", CLOSURE_SCRIPT, *mods], capture_output=True, text=True, check=True)
+    files = {}
+    for mod, loaded in json.loads(res.stdout).items():
+        files[mod] = {str(Path(sys.modules["penetration"].__file__).parent.joinpath(*m.split(".")[1:])) for m in loaded}
+    return {mod: {_as_file(p) for p in paths} for mod, paths in files.items()}
+
+
+def _as_file(path):
+    p = Path(path)
+    return p.with_suffix(".py") if p.with_suffix(".py").is_file() else p / "__init__.py"
+
+
+def rule_names():
+    res = subprocess.run(SNAKEMAKE + ["--list-rules"], capture_output=True, text=True, cwd=ROOT, check=True)
+    # Snakemake writes part of the list to stderr
+    return {line for line in (res.stdout + res.stderr).splitlines() if line.isidentifier()} - {"all"}
+
+
+def test_every_rule_has_a_task_and_every_task_a_rule():
+    assert rule_names() == set(registered_tasks())
+
+
+@pytest.fixture(scope="module")
+def tree(tmp_path_factory):
+    """A copy of the workflow where every output exists and is newer than every source file."""
+    root = tmp_path_factory.mktemp("workflow")
+    for name in ("Snakefile", "workflow", "src"):
+        (shutil.copytree if (ROOT / name).is_dir() else shutil.copy)(ROOT / name, root / name)
+    dry = subprocess.run(SNAKEMAKE + ["-n", "-c1", "--forceall"], capture_output=True, text=True, cwd=root, check=True)
+    outputs = {f.strip() for line in (dry.stdout + dry.stderr).splitlines() if line.strip().startswith("output:")
+               for f in line.split(":", 1)[1].split(",")}
+    now = time.time()
+    for p in root.rglob("*"):
+        if p.is_file():
+            os.utime(p, (now - 1000, now - 1000))
+    for f in outputs:
+        (root / f).parent.mkdir(parents=True, exist_ok=True)
+        (root / f).touch()
+        os.utime(root / f, (now, now))
+    graph = subprocess.run(SNAKEMAKE + ["--rulegraph"], capture_output=True, text=True, cwd=root, check=True).stdout
+    return root, now, _descendants(graph)
+
+
+def _descendants(dot):
+    """Rule -> every rule downstream of it, from Snakemake's --rulegraph (dot)."""
+    import re
+    label = dict(re.findall(r"^\s*(\d+)\[label = \"(\w+)\"", dot, re.M))
+    edges = [(label[a], label[b]) for a, b in re.findall(r"^\s*(\d+) -> (\d+)", dot, re.M)]
+    down = {}
+    for rule in label.values():
+        seen, todo = set(), [rule]
+        while todo:
+            r = todo.pop()
+            for a, b in edges:
+                if a == r and b not in seen:
+                    seen.add(b)
+                    todo.append(b)
+        down[rule] = seen
+    return down
+
+
+def rerun(tree, module):
+    """(rules re-run because ``module`` changed, all rules re-run) in a dry run after editing it."""
+    root, now, _ = tree
+    path = root / "src" / "penetration" / module
+    os.utime(path, (now + 100, now + 100))
+    try:
+        res = subprocess.run(SNAKEMAKE + ["-n", "-c1"], capture_output=True, text=True, cwd=root, check=True)
+        out = res.stdout + res.stderr
+    finally:
+        os.utime(path, (now - 1000, now - 1000))
+    direct, every, rule = set(), set(), None
+    for line in out.splitlines():
+        if line.startswith(("rule ", "localrule ")):
+            rule = line.split()[1].rstrip(":")
+            every.add(rule)
+        elif line.strip().startswith("reason:") and "Updated input files:" in line and f"penetration/{module}" in line:
+            direct.add(rule)
+    return direct, every - {"all"}
+
+
+@pytest.mark.parametrize("module", ["units.py", "hjc.py", "hjc_effects.py", "io.py", "config.py", "reference.py",
+                                    "geometry.py", "trajectory.py", "tasks/common.py", "figures/common.py",
+                                    "figures/fig04.py"])
+def test_editing_a_module_reruns_exactly_its_users(tree, closures, module):
+    in_dag = tree[2]  # the default target's rules (reproduce_check runs only when asked for)
+    users = {rule for rule, mod in registered_tasks().items() if SRC / module in closures[mod] and rule in in_dag}
+    direct, every = rerun(tree, module)
+    downstream = set().union(*(tree[2][r] for r in users)) - {"all"}
+    assert direct <= users  # Snakemake names only one reason per job: the others re-run for their inputs
+    assert every == users | downstream
+
+
+def test_every_rule_declares_threads_resources_benchmark_and_log():
+    """What a cluster profile and the cost figures use: threads, memory and runtime, a benchmark record."""
+    import re
+    text = "\n".join(p.read_text() for p in sorted((ROOT / "workflow/rules").glob("*.smk")))
+    blocks = re.split(r"^rule ", text, flags=re.M)[1:]
+    assert len(blocks) == len(rule_names())
+    for block in blocks:
+        name = block.split(":", 1)[0]
+        for key in ("threads:", "resources: mem_mb=", "runtime=", f'benchmark: "results/benchmarks/{name}', "log:",
+                    '**task("'):
+            assert key in block, f"rule {name} lacks {key}"
