@@ -74,10 +74,11 @@ def test_predict_writes_nothing_when_every_row_is_bad(tmp_path):
     assert not (tmp_path / "out.csv").exists()
 
 
-def test_predict_row_with_extra_fields_is_skipped_without_leftovers(tmp_path):
-    path = shots_file(tmp_path, f"{header()}\n{good_row()}\n{good_row()},surplus\n")
+def test_predict_rows_with_extra_or_missing_fields_are_skipped_without_leftovers(tmp_path):
+    path = shots_file(tmp_path, f"{header()}\n{good_row()}\n{good_row()},surplus\nDZ1,short\n")
     out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
-    assert out.returncode == 0 and "row 3" in out.stderr and "the header has" in out.stderr
+    assert out.returncode == 0 and "row 3: 14 fields, the header has 13" in out.stderr
+    assert "row 4: 2 fields, the header has 13" in out.stderr
     assert len((tmp_path / "out.csv").read_text().splitlines()) == 2
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.csv", "shots.csv"]  # no temporary file left
 

@@ -72,7 +72,9 @@ def _predict(args) -> int:
     try:
         write_rows(out, fields + ["dop_pred_m"], good)
     except OSError as err:
-        return _fail(f"cannot write --out {args.out}: {err.strerror or err}")
+        name = str(err.filename or "")
+        where = "" if name in ("", str(out)) else f" (directory {out.parent})" if name.endswith(".tmp") else f" ({name})"
+        return _fail(f"cannot write --out {args.out}: {err.strerror or err}{where}")
     print(f"predicted {len(good)} shots, skipped {len(problems)}; wrote {args.out}", file=sys.stderr)
     return 0
 

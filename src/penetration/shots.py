@@ -77,13 +77,17 @@ def predict_rows(rows, law="li_chen"):
     """Predicted depths for shot rows: (rows with dop_pred_m added, 'row N: reason' per skipped row).
 
     Rows are dicts as csv.DictReader yields them: fields beyond the header
-    sit under the key None, and such a row is skipped. N counts the header
+    sit under the key None, missing ones are None; such rows are skipped. N counts the header
     as row 1, as a spreadsheet does.
     """
     good, problems = [], []
     for i, row in enumerate(rows, start=2):
         if None in row:
             problems.append(f"row {i}: {len(row) - 1 + len(row[None])} fields, the header has {len(row) - 1}")
+            continue
+        if None in row.values():
+            given = sum(v is not None for v in row.values())
+            problems.append(f"row {i}: {given} fields, the header has {len(row)}")
             continue
         try:
             dop = predicted_depth(row, law)
