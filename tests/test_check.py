@@ -77,3 +77,11 @@ def test_scale_tolerance_covers_values_through_zero():
 def test_unknown_precision_class_is_an_error():
     with pytest.raises(KeyError, match="precision classes"):
         column_tolerances("nope", CHECK["precision"], 10.0, ["x"])
+
+
+def test_decades_compare_orders_of_magnitude():
+    """An error estimate may move within its decade, not by ten times."""
+    tol = column_tolerances("err", {"err": {"decades": 0.01, "atol": 1e-14}}, 100.0, ["e"])
+    old = pd.DataFrame({"e": [1.2e-7, 3e-13, 0.0]})
+    assert frames_differ(pd.DataFrame({"e": [4.0e-7, 2e-13, 1e-13]}), old, tol) is None
+    assert "decades apart" in frames_differ(pd.DataFrame({"e": [1.3e-6, 3e-13, 0.0]}), old, tol)

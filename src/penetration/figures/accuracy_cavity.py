@@ -22,6 +22,7 @@ def accuracy_cavity(inputs, outputs, params):
     write_csv(data.drop(columns="wall_time_s"), outputs.csv)
     write_csv(data[["study", "setting", "wall_time_s"]], outputs.timing)
     fig, axes = figure(len(PANELS), 4.2, 3.6)
+    fig.subplots_adjust(wspace=0.4)  # room for each panel's y label
     data["panel"] = data.study.str.replace(r"_(pchip_v2|linear_v)$", "", regex=True)
     for ax, (panel, title) in zip(axes, PANELS.items()):
         for study, g in data[data.panel == panel].groupby("study", sort=False):

@@ -5,7 +5,10 @@ config's ``check.outputs`` with the one the pipeline just made. Each column
 is compared with the tolerance of its precision class: a value passes when
 |now - committed| <= factor * (atol + rtol |committed| + scale max|committed column|),
 where (rtol, atol, scale) is what the producer of the column guarantees
-(``check.precision``) and ``factor`` the margin. Text columns must match.
+(``check.precision``) and ``factor`` the margin. A class with ``decades``
+compares orders of magnitude instead (error estimates of accuracy studies):
+|log10((|now| + F atol)/(|committed| + F atol))| <= F decades, F the factor.
+Text columns must match.
 """
 from __future__ import annotations
 
@@ -91,7 +94,7 @@ def diff(inputs, outputs, params):
 
 # --------------------------------------------------------- reproduction check
 def column_tolerances(spec, precision, factor, columns):
-    """Column -> (rtol, atol, scale) for one output from its spec in ``check.outputs``.
+    """Column -> (rtol, atol, scale, decades), times the factor, for one output from its spec in ``check.outputs``.
 
     ``spec`` is a precision class name, or {"default": class, "columns": {column: class}}.
     """
@@ -101,7 +104,8 @@ def column_tolerances(spec, precision, factor, columns):
     unknown = sorted({n for n in list(named.values()) + [spec["default"]] if n not in precision})
     if unknown:
         raise KeyError(f"check.outputs names precision classes {unknown}; defined: {sorted(precision)}")
-    return {c: tuple(factor * precision[n].get(k, 0.0) for k in ("rtol", "atol", "scale")) for c, n in named.items()}
+    keys = ("rtol", "atol", "scale", "decades")
+    return {c: tuple(factor * precision[n].get(k, 0.0) for k in keys) for c, n in named.items()}
 
 
 def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances):
@@ -113,16 +117,21 @@ def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances):
     for col in new.columns:
         a, b = new[col], old[col]
         if pd.api.types.is_numeric_dtype(a) and pd.api.types.is_numeric_dtype(b):
-            rtol, atol, scale = tolerances[col]
+            rtol, atol, scale, decades = tolerances[col]
             x, y = a.to_numpy(float), b.to_numpy(float)
-            finite = np.isfinite(y)
-            big = float(np.max(np.abs(y[finite]))) if finite.any() else 0.0
-            allowed = atol + rtol * np.abs(y) + scale * big
-            same = (np.abs(x - y) <= allowed) | (np.isnan(x) & np.isnan(y)) | (x == y)
+            if decades:
+                gap = np.abs(np.log10((np.abs(x) + atol) / (np.abs(y) + atol)))
+                what, allowed = "decades apart", np.full_like(y, decades)
+            else:
+                finite = np.isfinite(y)
+                big = float(np.max(np.abs(y[finite]))) if finite.any() else 0.0
+                gap = np.abs(x - y)
+                what, allowed = "|difference|", atol + rtol * np.abs(y) + scale * big
+            same = (gap <= allowed) | (np.isnan(x) & np.isnan(y)) | (x == y)
             if not same.all():
                 i = int(np.argmax(~same))
                 return (f"column {col} row {i + 2}: committed {y[i]!r}, now {x[i]!r} "
-                        f"(|difference| {abs(x[i] - y[i]):.3g} > allowed {allowed[i]:.3g})")
+                        f"({what} {gap[i]:.3g} > allowed {allowed[i]:.3g})")
         elif not a.astype(str).equals(b.astype(str)):
             i = int(np.argmax((a.astype(str) != b.astype(str)).to_numpy()))
             return f"column {col} row {i + 2}: committed {b.iloc[i]!r}, now {a.iloc[i]!r}"
