@@ -160,3 +160,11 @@ def test_snakemake_accepts_a_nested_override():
     out = subprocess.run([sys.executable, "-m", "snakemake", "-n", "-c1", "figures/table1.csv", "--config",
                           "figures={dpi: 131, points_per_segment: 200}"], capture_output=True, text=True, cwd=ROOT)
     assert out.returncode == 0, out.stderr
+
+
+def test_unknown_reference_id_is_noticed_at_load(monkeypatch):
+    monkeypatch.chdir(ROOT)
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["calibration"]["do1"]["depth"] = "table2.dopp"
+    with pytest.raises(ConfigError, match="calibration.do1.depth: 'table2.dopp' is not an id"):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")

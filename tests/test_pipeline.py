@@ -37,7 +37,7 @@ def test_table1_needs_no_geometry():
 
 
 def test_invalid_config_stops_before_jobs():
-    out = snakemake("--config", "projectile={'density': -5.0, 'radius': 0.07}")
+    out = snakemake("--config", "projectile={'density': -5.0, 'diameter': 'table2.diameter'}")
     assert out.returncode != 0
     text = out.stdout + out.stderr
     assert "projectile.density" in text and "allowed" in text

@@ -5,6 +5,7 @@ raised before any computation starts.
 """
 from __future__ import annotations
 
+import csv
 import json
 from pathlib import Path
 
@@ -132,6 +133,18 @@ def coerce(data, schema):
 
 # config fields naming input files (dotted path): checked to exist when the config is loaded
 FILE_FIELDS = ("reference", "findings", "validation.shots")
+# config fields naming rows of the reference file by id ("[]" walks a list)
+REFERENCE_FIELDS = ("projectile.density", "projectile.diameter", "table4_do1.nstar_target", "table4_do1.mass_target",
+                    "calibration.do1.mass", "calibration.do1.velocity", "calibration.do1.depth",
+                    "diameter_450kg.axes.[].top")
+
+
+def _values(cfg, dotted):
+    """The values at a dotted path of the config ("[]" expands a list)."""
+    values = [cfg]
+    for key in dotted.split("."):
+        values = [x for v in values for x in v] if key == "[]" else [v[key] for v in values]
+    return values
 
 
 def check_config(cfg: dict, schema_path, source: str) -> dict:
@@ -139,13 +152,14 @@ def check_config(cfg: dict, schema_path, source: str) -> dict:
     schema = json.loads(Path(schema_path).read_text())
     cfg.update(coerce(dict(cfg), schema))
     validate(cfg, schema, source)
-    missing = []
-    for dotted in FILE_FIELDS:
-        value = cfg
-        for key in dotted.split("."):
-            value = value[key]
-        if not Path(value).is_file():
-            missing.append(f"{source}: {dotted}: file {value!r} does not exist; allowed: the path of an existing file")
+    missing = [f"{source}: {dotted}: file {value!r} does not exist; allowed: the path of an existing file"
+               for dotted in FILE_FIELDS for value in _values(cfg, dotted) if not Path(value).is_file()]
     if missing:
         raise ConfigError("\n".join(missing))
+    with open(cfg["reference"], newline="") as fh:
+        ids = {row["id"] for row in csv.DictReader(fh)}
+    unknown = [f"{source}: {dotted}: {value!r} is not an id of {cfg['reference']}; allowed: one of its ids"
+               for dotted in REFERENCE_FIELDS for value in _values(cfg, dotted) if value not in ids]
+    if unknown:
+        raise ConfigError("\n".join(unknown))
     return cfg

@@ -27,7 +27,7 @@ rule calibrate_cavity_do1:
 rule cavity_table:
     input: **task("tasks.cavity"), cal="results/calibration/cavity_do1.json", reference=config["reference"],
     output: csv="results/cavity/sigma_n.csv",
-    params: cfg=config["cavity"], radius=config["projectile"]["radius"],
+    params: cfg=config["cavity"], projectile=config["projectile"],
     threads: 2
     resources: mem_mb=2000, runtime=10
     benchmark: "results/benchmarks/cavity_table.tsv"

@@ -24,7 +24,7 @@ rule infer_table4_do1:
 
 
 rule geometry:
-    input: **task("tasks.geometry"), **GEOMETRY_RESULTS,
+    input: **task("tasks.geometry"), **GEOMETRY_RESULTS, reference=config["reference"],
     output: noses="results/nstar/noses.csv", curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv",
     params: projectile=config["projectile"], table4=config["table4"], fig4=config["fig4_design"],
             points=config["figures"]["points_per_segment"],

@@ -16,7 +16,7 @@ from ..hjc_effects import MATERIAL_EFFECTS
 from ..io import load_json, read_inference, task, write_csv, write_json
 from ..nstar import nstar
 from ..resistance import nose_surface
-from .common import CAVITY, scene_from_inputs
+from .common import CAVITY, projectile, scene_from_inputs
 
 CONVENTIONS = ("lock", "tension", "rate_floor")
 
@@ -106,8 +106,8 @@ def cavity_table(inputs, outputs, params):
     rows = []
     for label, s in (("calibrated", scale), ("table1", 1.0)):
         t0 = time.perf_counter()
-        table, results = sigma_table(configured_hjc(refs, cfg, strength_scale=s), cfg["velocities"], params.radius,
-                                     mesh, controls)
+        table, results = sigma_table(configured_hjc(refs, cfg, strength_scale=s), cfg["velocities"],
+                                     projectile(refs, params.projectile)[1], mesh, controls)
         cost = time.perf_counter() - t0
         stats = [None] + results
         for v, sig, ex, r in zip(table.v, table.sigma, table.extrapolated, stats):

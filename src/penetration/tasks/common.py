@@ -9,6 +9,11 @@ PLAIN = ("analytic", "trajectory")  # the levels of workflow/scenes/*.yaml
 CAVITY = ("cavity",)  # workflow/scenes/cavity/*.yaml
 
 
+def projectile(refs, ids):
+    """Steel density and DO1 shank radius (SI) from the reference ids of the config's ``projectile``."""
+    return refs[ids["density"]].si, 0.5 * refs[ids["diameter"]].si
+
+
 def scene_from_inputs(inputs, levels, placeholder_diameter=None):
     """The rule's scene (``inputs.scene``) resolved with the inferred noses, calibrations and diameter it names.
 

@@ -10,6 +10,7 @@ from .. import inference, reference
 from ..geometry import Cone, MinimumNstar, Ogive
 from ..io import nose_record, read_inference, task, write_csv, write_json
 from ..nstar import cumulative_nstar, nstar, shape_rate
+from .common import projectile
 
 
 def _write_inference(result, out_json, out_family):
@@ -31,17 +32,18 @@ def infer_fig4_design(inputs, outputs, params):
 
 @task
 def infer_table4_do1(inputs, outputs, params):
-    cfg, proj = params.cfg, params.projectile
+    cfg = params.cfg
     refs = reference.load_reference(inputs.reference)
+    density, radius = projectile(refs, params.projectile)
     targets = {k: refs[cfg[k]] for k in ("nstar_target", "mass_target")}
-    rule = inference.Table4Rule(radius=proj["radius"], density=proj["density"], psi_base=cfg["psi_base"],
+    rule = inference.Table4Rule(radius=radius, density=density, psi_base=cfg["psi_base"],
                                 psi_length=cfg["psi_length"], nstar_target=targets["nstar_target"].si,
                                 mass_target=targets["mass_target"].si, middle_fraction=cfg["middle_fraction"],
                                 family_points=cfg["family_points"])
     result = inference.infer_table4(rule)
     result["inference_inputs"] = {k: {"id": r.id, "value": r.value, "unit": r.unit, "source": r.source}
                                   for k, r in targets.items()}
-    result["described"] = inference.describe(result["nose"], proj["density"])
+    result["described"] = inference.describe(result["nose"], density)
     _write_inference(result, outputs.json, outputs.family)
 
 
@@ -58,14 +60,15 @@ def study_noses(fig4, do1, radius, psi_length):
 @task
 def geometry(inputs, outputs, params):
     """N*, sizes and cumulative N* curves of the study's noses; Fig 3 bands."""
-    noses = study_noses(read_inference(inputs.fig4)["nose"], read_inference(inputs.do1)["nose"],
-                        params.projectile["radius"], params.table4["psi_length"])
+    density, radius = projectile(reference.load_reference(inputs.reference), params.projectile)
+    noses = study_noses(read_inference(inputs.fig4)["nose"], read_inference(inputs.do1)["nose"], radius,
+                        params.table4["psi_length"])
     rows, curves = [], []
     for name, nose in noses.items():
         shape_only = name.startswith("fig4_")
         rows.append({"name": name, "kind": nose.kind, "radius": nose.radius, "length": nose.length,
                      "nstar": nstar(nose), "volume": nose.volume(),
-                     "mass": np.nan if shape_only else nose.mass(params.projectile["density"]),
+                     "mass": np.nan if shape_only else nose.mass(density),
                      "params": json.dumps(nose_record(nose)["params"], sort_keys=True)})
         x, y, cum = cumulative_nstar(nose, params.points)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
