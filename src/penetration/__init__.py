@@ -1,6 +1,7 @@
 """Replication of Liu, Pi & Huang (2015), penetration of double-ogive noses.
 
-Stages import one way: geometry -> nstar -> (inference) -> reference ->
-figures; ``tasks`` is the only module that reads or writes files.
+Stages import one way: geometry -> nstar -> resistance -> (dop | trajectory |
+hjc -> cavity) -> reference -> figures. Physics modules do no file I/O; the
+``tasks`` package (one module per stage) and ``io`` read and write files.
 """
 __version__ = "0.1.0"

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import json
 from pathlib import Path
 
 from . import config
@@ -109,7 +110,6 @@ def run(rule, task_file, inputs, outputs, params):
 
 def load_studies(folder, schema_path) -> dict:
     """Study grids by name: every ``folder/NAME.yaml``, each checked against the schema's definition NAME."""
-    import json
     schema = json.loads(Path(schema_path).read_text())
     studies = {}
     for path in sorted(Path(folder).glob("*.yaml")):
