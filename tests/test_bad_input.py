@@ -168,3 +168,42 @@ def test_unknown_reference_id_is_noticed_at_load(monkeypatch):
     cfg["calibration"]["do1"]["depth"] = "table2.dopp"
     with pytest.raises(ConfigError, match="calibration.do1.depth: 'table2.dopp' is not an id"):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+@pytest.mark.parametrize("field,value", [("diameter_m", "1e-160"), ("mass_kg", "1e-300")])
+def test_predict_refuses_sizes_that_make_eq9_infinite(tmp_path, field, value):
+    import csv
+    import io
+    head = header().split(",")
+    # the source column holds a quoted reference with commas: rebuild the row with the csv module
+    parsed = next(csv.reader(io.StringIO(good_row())))
+    parsed[head.index(field)] = value
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow(parsed)
+    path = shots_file(tmp_path, f"{header()}\n{buf.getvalue()}")
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 2 and field in out.stderr and "allowed" in out.stderr
+    assert not (tmp_path / "out.csv").exists()
+
+
+def test_predict_out_is_a_directory(tmp_path):
+    path = shots_file(tmp_path, f"{header()}\n{good_row()}\n")
+    out = cli("predict", str(path), "--out", str(tmp_path))
+    assert out.returncode == 2 and "is a directory" in out.stderr
+
+
+def test_yaml_merge_keys_still_load_and_unhashable_keys_are_config_errors(tmp_path):
+    from penetration.config import load_with
+    (tmp_path / "m.yaml").write_text("base: &x {a: 1}\nd: {<<: *x, c: 2}\n")
+    assert load_with(tmp_path / "m.yaml", {})["d"] == {"a": 1, "c": 2}
+    (tmp_path / "u.yaml").write_text("? [a, b]\n: 1\n")
+    with pytest.raises(ConfigError):
+        load_with(tmp_path / "u.yaml", {})
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "+-5"])
+def test_override_strings_that_are_not_finite_numbers_are_refused(value):
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["trajectory"] = {"rtol": value}
+    with pytest.raises(ConfigError, match="trajectory.rtol"):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")

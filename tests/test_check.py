@@ -85,3 +85,32 @@ def test_decades_compare_orders_of_magnitude():
     old = pd.DataFrame({"e": [1.2e-7, 3e-13, 0.0]})
     assert frames_differ(pd.DataFrame({"e": [4.0e-7, 2e-13, 1e-13]}), old, tol) is None
     assert "decades apart" in frames_differ(pd.DataFrame({"e": [1.3e-6, 3e-13, 0.0]}), old, tol)
+
+
+def test_every_committed_output_csv_is_checked():
+    """Each CSV the pipeline commits under figures/ (timing files aside) has a tolerance in check.outputs."""
+    from pathlib import Path
+    import yaml
+    root = Path(__file__).resolve().parents[1]
+    listed = set(yaml.safe_load((root / "workflow/config.yaml").read_text())["check"]["outputs"])
+    on_disk = {f"figures/{p.name}" for p in (root / "figures").glob("*.csv")}
+    assert listed == on_disk
+
+
+def test_a_small_value_among_large_ones_is_checked_on_its_own():
+    """Without `scale`, a column mixing quantities checks each value relative to itself."""
+    tol = column_tolerances("each", {"each": {"rtol": 1e-13}}, 100.0, ["si"])
+    old = pd.DataFrame({"si": [2.2e11, 0.001]})
+    assert frames_differ(pd.DataFrame({"si": [2.2e11, 0.003]}), old, tol) is not None
+
+
+def test_committed_inf_must_stay_inf():
+    tol = column_tolerances("fine", CHECK["precision"], 10.0, ["x"])
+    old = pd.DataFrame({"x": [float("inf"), 1.0]})
+    assert frames_differ(pd.DataFrame({"x": [1e300, 1.0]}), old, tol) is not None
+    assert frames_differ(old.copy(), old, tol) is None
+
+
+def test_a_column_override_must_name_a_column_of_the_file():
+    with pytest.raises(KeyError, match="lacks"):
+        column_tolerances({"default": "fine", "columns": {"typo": "fine"}}, CHECK["precision"], 10.0, ["x"])

@@ -58,6 +58,8 @@ def _predict(args) -> int:
     from .io import read_rows, write_rows
     from .shots import predict_rows
     src, out = Path(args.shots), Path(args.out)
+    if out.is_dir():
+        return _fail(f"--out {args.out} is a directory; allowed: the path of a CSV file to write")
     if out.exists() and src.exists() and out.resolve() == src.resolve():
         return _fail(f"--out {args.out} is the shots file itself; allowed: a different path (the input is never overwritten)")
     try:
@@ -70,7 +72,7 @@ def _predict(args) -> int:
     if not good:
         return _fail(f"no shot in {args.shots} could be predicted ({len(rows)} rows); nothing written")
     try:
-        write_rows(out, fields + ["dop_pred_m"], good)
+        write_rows(out, [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"], good)
     except OSError as err:
         name = str(err.filename or "")
         where = "" if name in ("", str(out)) else f" (directory {out.parent})" if name.endswith(".tmp") else f" ({name})"

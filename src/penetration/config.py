@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 from pathlib import Path
 
 import jsonschema
@@ -23,8 +24,14 @@ class _StrictLoader(yaml.SafeLoader):
     def construct_mapping(self, node, deep=False):
         seen = set()
         for key_node, _ in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                continue  # '<<' merges another mapping; its keys may be overridden here
             key = self.construct_object(key_node, deep=deep)
-            if key in seen:
+            try:
+                duplicate = key in seen
+            except TypeError:
+                continue  # unhashable: the base class reports it as a YAML error
+            if duplicate:
                 raise ConfigError(f"line {key_node.start_mark.line + 1}: key {key!r} is given twice; allowed: each key once")
             seen.add(key)
         return super().construct_mapping(node, deep)
@@ -119,13 +126,12 @@ def coerce(data, schema):
         return [coerce(v, schema.get("items", {})) for v in data]
     if isinstance(data, str):
         text = data.strip()
-        if kind == "integer" and text.lstrip("+-").isdigit():
-            return int(text)
-        if kind == "number":
+        if kind in ("integer", "number"):
             try:
-                return float(text)
+                value = int(text) if kind == "integer" else float(text)
             except ValueError:
                 return data
+            return value if math.isfinite(value) else data  # 'nan' and 'inf' stay strings, for validation to refuse
         if kind == "boolean" and text.lower() in ("true", "false"):
             return text.lower() == "true"
     return data

@@ -16,7 +16,7 @@ from .resistance import Target, strength_factor
 from .units import MPA
 
 # name -> (exclusive lower bound, inclusive upper bound), in the column's unit
-SHOT_FIELDS = {"mass_kg": (0.0, 1e6), "diameter_m": (0.0, 10.0), "target_density_kgm3": (100.0, 2e4),
+SHOT_FIELDS = {"mass_kg": (1e-6, 1e6), "diameter_m": (2e-6, 10.0), "target_density_kgm3": (100.0, 2e4),
                "fc_MPa": (0.5, 2000.0), "velocity_ms": (0.0, 1e4)}
 NOSE_SHAPES = ("ogive", "hemispherical", "flat")
 CRH_RANGE = (0.5, 1e4)
@@ -70,7 +70,10 @@ def predicted_depth(row, law="li_chen") -> float:
     n = shot_nstar(row)
     fc = v["fc_MPa"] * MPA
     target = Target(v["target_density_kgm3"], fc, float(strength_factor(fc, law)))
-    return float(penetration_depth(v["mass_kg"], 0.5 * v["diameter_m"], n, target, v["velocity_ms"]))
+    depth = float(penetration_depth(v["mass_kg"], 0.5 * v["diameter_m"], n, target, v["velocity_ms"]))
+    if not (math.isfinite(depth) and depth > 0):
+        raise ShotError(f"the predicted depth is {depth}: the fields are out of the range where Eq 9 is finite")
+    return depth
 
 
 def predict_rows(rows, law="li_chen"):

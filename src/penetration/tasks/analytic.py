@@ -87,4 +87,4 @@ def validation_predictions(inputs, outputs, params):
     print(f"predicted {len(good)} shots; skipped {len(problems)}")
     for p in problems:
         print(p)
-    write_rows(outputs.csv, fields + ["dop_pred_m"], good)
+    write_rows(outputs.csv, [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"], good)

@@ -26,6 +26,9 @@ def cavity_ablation(inputs, outputs, params):
     rows, times = [], []
     for variant in params.study["variants"]:
         effects = tuple(variant.get("effects", cfg["effects"]))
+        if variant.get("friction", 0.0) > 0 and "friction" not in effects:
+            raise ValueError(f"study cavity_ablation, variant {variant['name']!r}: friction is set but effect friction "
+                             f"is not listed in {list(effects)}; allowed: list friction or drop the coefficient")
         t0 = time.perf_counter()
         table, _ = sigma_table(configured_hjc(refs, cfg, strength_scale=scale, **variant.get("material", {})),
                                cfg["velocities"], nose.radius, mesh, controls)

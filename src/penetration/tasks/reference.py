@@ -100,6 +100,9 @@ def column_tolerances(spec, precision, factor, columns):
     """
     if isinstance(spec, str):
         spec = {"default": spec}
+    stray = sorted(set(spec.get("columns", {})) - set(columns))
+    if stray:
+        raise KeyError(f"check.outputs names columns {stray} that the file lacks; its columns: {list(columns)}")
     named = {c: spec.get("columns", {}).get(c, spec["default"]) for c in columns}
     unknown = sorted({n for n in list(named.values()) + [spec["default"]] if n not in precision})
     if unknown:
@@ -119,15 +122,10 @@ def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances):
         if pd.api.types.is_numeric_dtype(a) and pd.api.types.is_numeric_dtype(b):
             rtol, atol, scale, decades = tolerances[col]
             x, y = a.to_numpy(float), b.to_numpy(float)
-            if decades:
-                gap = np.abs(np.log10((np.abs(x) + atol) / (np.abs(y) + atol)))
-                what, allowed = "decades apart", np.full_like(y, decades)
-            else:
-                finite = np.isfinite(y)
-                big = float(np.max(np.abs(y[finite]))) if finite.any() else 0.0
-                gap = np.abs(x - y)
-                what, allowed = "|difference|", atol + rtol * np.abs(y) + scale * big
-            same = (gap <= allowed) | (np.isnan(x) & np.isnan(y)) | (x == y)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                gap, allowed, what = _gap(x, y, rtol, atol, scale, decades)
+            # a committed inf or nan must come back as it was
+            same = np.where(np.isfinite(y), (gap <= allowed) | (x == y), (x == y) | (np.isnan(x) & np.isnan(y)))
             if not same.all():
                 i = int(np.argmax(~same))
                 return (f"column {col} row {i + 2}: committed {y[i]!r}, now {x[i]!r} "
@@ -136,6 +134,16 @@ def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances):
             i = int(np.argmax((a.astype(str) != b.astype(str)).to_numpy()))
             return f"column {col} row {i + 2}: committed {b.iloc[i]!r}, now {a.iloc[i]!r}"
     return None
+
+
+def _gap(x, y, rtol, atol, scale, decades):
+    """(gap, allowed gap, what the gap measures) between new values x and committed y."""
+    if decades:
+        gap = np.abs(np.log10((np.abs(x) + atol) / (np.abs(y) + atol)))
+        return gap, np.full_like(y, decades), "decades apart"
+    finite = np.isfinite(y)
+    big = float(np.max(np.abs(y[finite]))) if finite.any() else 0.0
+    return np.abs(x - y), atol + rtol * np.abs(y) + scale * big, "|difference|"
 
 
 def _committed(path):
