@@ -3,8 +3,8 @@ from pathlib import Path
 
 import pytest
 
-from penetration.reference import (COLUMNS, STATUSES, Ref, arithmetic_check, holds, load_reference, table1_rows,
-                                   table3_rows)
+from penetration.diff import COLUMNS, STATUSES, arithmetic_check, holds, table1_rows, table3_rows
+from penetration.reference import Ref, load_reference
 
 ROOT = Path(__file__).resolve().parents[1]
 REF = ROOT / "workflow/reference/paper_values.csv"
@@ -62,7 +62,7 @@ def test_committed_diff_has_the_contract():
 
 def _shot_refs(depth_at_shot_ratio):
     """Table 3 double-ogive row on a straight line in v; the shot at ratio x the line's 835 m/s value."""
-    from penetration.reference import table3_sim_at_shot
+    from penetration.diff import table3_sim_at_shot
     line = lambda v: 0.01 * v - 3.0
     R = {f"table3.sim.{v}.double_ogive": ref(line(v), "m") for v in (500, 800, 1000, 1200)}
     R["table2.velocity"] = ref(835.0, "m/s")
@@ -77,7 +77,16 @@ def test_table3_row_interpolated_at_the_shot():
 
 
 def test_paper_table3_row_sits_above_the_shot():
-    from penetration.reference import table3_sim_at_shot
+    from penetration.diff import table3_sim_at_shot
     row = table3_sim_at_shot(load_reference(REF))
     # linear interpolation between 800 and 1000 m/s gives 5.307 m, a chord above the convex row
     assert 5.27 < row.ours < 5.307 and row.rel_err == pytest.approx(0.037, abs=0.005)
+
+
+def test_calibrated_agreement_has_its_own_status():
+    """Agreement that a calibration produced is never counted as reproduction."""
+    from penetration.diff import compare
+    r = ref(5.0)
+    assert compare(r, 5.0).status == "reproduced"
+    assert compare(r, 5.0, calibrated=True).status == "agrees-after-calibration"
+    assert compare(r, 9.0, calibrated=True).status == "deviates"

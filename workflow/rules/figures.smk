@@ -198,6 +198,7 @@ rule validation:
 
 rule cavity_sigma_n:
     input: **task("figures.cavity_sigma_n"), sigma="results/cavity/sigma_n.csv", cal_do1="results/calibration/do1.json",
+           shots="results/scenes/cavity/table3.csv",
     output: png="figures/cavity_sigma_n.png", csv="figures/cavity_sigma_n.csv",
     params: dpi=config["figures"]["dpi"], rho=config["cavity_plot"]["rho"], fc=config["cavity_plot"]["fc"],
     threads: 1

@@ -22,6 +22,11 @@ def cavity_sigma_n(inputs, outputs, params):
     for S, lab, ls in ((72 * (fc / 1e6) ** -0.5, "S fc + rho v^2, S = 72 fc^-0.5 (paper Eq 7)", "--"),
                        (cal["S"], f"S fc + rho v^2, S = {cal['S']:.3f} (calibrated on DO1)", ":")):
         ax.plot(v, (S * fc + rho * v * v) / 1e6, "k", ls=ls, lw=1, label=lab)
+    shots = pd.read_csv(inputs.shots)
+    top = shots.peak_normal_velocity.max()
+    ax.axvspan(0, top, color="tab:blue", alpha=0.07,
+               label=f"v_n the Table 3 noses sample (up to {top:.0f} m/s = "
+                     f"{top / shots.velocity.max():.2f} x {shots.velocity.max():.0f} m/s)")
     ax.set(xlabel="cavity-wall (normal) velocity (m/s)", ylabel="sigma_n (MPa)", title="Normal stress law on the nose")
     ax.legend(fontsize=7)
     save(fig, outputs.png, params.dpi)

@@ -14,7 +14,7 @@ from .common import color, figure, save
 LABELS = {"crh3": "CRH 3", "double_ogive": "double ogive", "crh5": "CRH 5"}
 
 
-def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None):
+def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None, legend_loc="best"):
     vel = sorted(hist.velocity.unique())
     fig, axes = figure(len(vel), 5.0, 3.8)
     for ax, v in zip(axes, vel):
@@ -22,13 +22,15 @@ def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None):
             main = case == "chosen"
             ax.plot(g.t * 1e3, g[quantity], color=color(nose), lw=1.6 if main else 0.6, ls="-" if main else "--",
                     label=LABELS[nose] if main else None)
+        lo, hi = (2e3 * dop.loc[dop.radius_case == c, "radius"].iloc[0] for c in ("interval_low", "interval_high"))
+        ax.plot([], [], "k--", lw=0.6, label=f"dashed: d = {lo:.0f} and {hi:.0f} mm (ends of the inferred interval)")
         if axis_refs:
             t_top, y_top = axis_refs[v]
             ax.axhline(y_top, color="k", ls=":", lw=1, label="paper axis limits")
             ax.axvline(t_top, color="k", ls=":", lw=1)
         d = 2 * dop.loc[dop.radius_case == "chosen", "radius"].iloc[0]
         ax.set(xlabel="t (ms)", ylabel=ylabel, title=f"{title}, vs = {v:.0f} m/s, d = {d * 1e3:.0f} mm (inferred)")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc=legend_loc)
     save(fig, outputs.png, params.dpi)
 
 
@@ -38,4 +40,4 @@ def fig08(inputs, outputs, params):
     dop = pd.read_csv(inputs.dop)
     hist["deceleration_g"] = hist.deceleration / G0
     write_csv(hist[["nose", "radius_case", "velocity", "t", "deceleration_g"]], outputs.csv)
-    panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8")
+    panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8", legend_loc="lower right")

@@ -18,4 +18,4 @@ def fig09(inputs, outputs, params):
     write_csv(hist[["nose", "radius_case", "velocity", "t", "pd_over_d"]], outputs.csv)
     axis = {v: (refs[f"fig09.t_axis_max.{v:.0f}"].value, refs[f"fig09.pd_axis_max.{v:.0f}"].value)
             for v in hist.velocity.unique()}
-    panels(hist, dop, "pd_over_d", outputs, params, "Pd/d", "Fig 9", axis)
+    panels(hist, dop, "pd_over_d", outputs, params, "Pd/d", "Fig 9", axis, legend_loc="lower right")

@@ -31,10 +31,11 @@ def fig15(inputs, outputs, params):
     write_csv(table, outputs.csv)
     fig, (ax,) = figure(1, 6.4, 4.4)
     for n, g in data.groupby("nose", sort=False):
-        ax.plot(g.velocity, g.dop_over_d, color=color(n), label=f"{LABELS[n]} (ours, N* {g.nstar.iloc[0]:.4f})")
+        ax.plot(g.velocity, g.dop_over_d, color=color(n), label=f"{LABELS[n]}, N* {g.nstar.iloc[0]:.4f}")
+    ax.plot([], [], "k-", label="solid: ours, Eq 9 with S calibrated on DO1")
     for n, g in sim.groupby("nose", sort=False):
         ax.plot(g.velocity, g.dop_over_d, color=color(n), ls="--", lw=1)
-    ax.plot([], [], "k--", lw=1, label="dashed: ours, cavity level (HJC)")
+    ax.plot([], [], "k--", lw=1, label="dashed: ours, cavity level (HJC, strength scale calibrated on DO1)")
     for row in paper:
         filled = "calculation" in row["source"]
         marker = "*" if "experiment" in row["source"] else "o"

@@ -147,6 +147,7 @@ def scene_cavity(inputs, outputs, params):
                          # largest normal stress on the nose (at impact, where the surface is steepest):
                          # beyond the projectile's yield strength the rigid-body assumption fails
                          "peak_nose_stress": float(table(v * steepest)),
+                         "peak_normal_velocity": float(v * steepest),  # the fastest v_n the nose samples
                          "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0})
             hist.append(pd.DataFrame({"nose": name, "velocity": v, "t": tr.t, "z": tr.z, "v": tr.v,
                                       "deceleration": tr.deceleration}))

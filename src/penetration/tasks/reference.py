@@ -19,7 +19,7 @@ import subprocess
 import numpy as np
 import pandas as pd
 
-from .. import reference
+from .. import diff as diff_rows, reference
 from ..io import load_json, task, write_csv, write_text
 
 
@@ -51,13 +51,13 @@ def _model_rows(refs, inputs):
     d_do1 = 2 * cal["data"]["radius"]
     calibrated_pd = (cal["data"]["measured_depth"] + cal["residual_m"]) / d_do1
     table3 = pd.read_csv(inputs.table3).to_dict("records")
-    return (reference.table3_model_rows(refs, table3, fit["cells"])
-            + reference.experiment_rows(refs, do1.trajectory_dop, cal["S"])
-            + reference.ordering_rows(refs, sec22)
-            + reference.fig01_rows(refs, pd.read_csv(inputs.shares).to_dict("records"))
-            + reference.fig15_rows(refs, pd.read_csv(inputs.fig15).to_dict("records"), do1.trajectory_dop / d_do1,
+    return (diff_rows.table3_model_rows(refs, table3, fit["cells"])
+            + diff_rows.experiment_rows(refs, do1.trajectory_dop, cal["S"])
+            + diff_rows.ordering_rows(refs, sec22)
+            + diff_rows.fig01_rows(refs, pd.read_csv(inputs.shares).to_dict("records"))
+            + diff_rows.fig15_rows(refs, pd.read_csv(inputs.fig15).to_dict("records"), do1.trajectory_dop / d_do1,
                                    calibrated_pd)
-            + reference.cavity_rows(refs, table3, pd.read_csv(inputs.cavity_table3).to_dict("records"),
+            + diff_rows.cavity_rows(refs, table3, pd.read_csv(inputs.cavity_table3).to_dict("records"),
                                     float(pd.read_csv(inputs.cavity_do1).cavity_dop.iloc[0]),
                                     load_json(inputs.cal_cavity)["strength_scale"], _erosion_fit(inputs.sensitivity)))
 
@@ -82,14 +82,14 @@ def diff(inputs, outputs, params):
     by = table.set_index("name")
     ours = {f"nstar.{n}": float(by.loc[n, "nstar"]) for n in by.index}
     ours.update({f"mass.{n}": float(by.loc[n, "mass"]) for n in by.index})
-    rows = (reference.table1_rows(refs) + reference.table3_rows(refs) + reference.table4_rows(refs, ours)
-            + reference.fig03_rows(refs, _bands_dict(inputs.bands, table)) + reference.fig05_rows(refs, ours)
+    rows = (diff_rows.table1_rows(refs) + diff_rows.table3_rows(refs) + diff_rows.table4_rows(refs, ours)
+            + diff_rows.fig03_rows(refs, _bands_dict(inputs.bands, table)) + diff_rows.fig05_rows(refs, ours)
             + _model_rows(refs, inputs))
-    frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=reference.COLUMNS)
+    frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=diff_rows.COLUMNS)
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")
     pending = sorted(set(refs) - refs.used)
-    write_text(outputs.summary, reference.summary(rows, findings, pending))
+    write_text(outputs.summary, diff_rows.summary(rows, findings, pending))
 
 
 # --------------------------------------------------------- reproduction check
@@ -156,7 +156,7 @@ def _committed(path):
 
 
 def reproduction_problems(outputs, diff_path, check):
-    """(problems, number of files compared): drifted output CSVs and lost 'reproduced' diff rows.
+    """(problems, number of files compared): drifted output CSVs and diff rows that lost their agreement.
 
     ``outputs``: the paths to compare (keys of ``check["outputs"]``); ``check``:
     the config's check section (factor, precision classes, outputs).
@@ -177,10 +177,10 @@ def reproduction_problems(outputs, diff_path, check):
         key = ["item", "quantity", "case"]
         was = pd.read_csv(stdio.StringIO(old))
         now = pd.read_csv(diff_path).set_index(key)["status"]
-        for r in was[was.status == "reproduced"].itertuples():
+        for r in was[was.status.isin(diff_rows.AGREES)].itertuples():
             status = now.get((r.item, r.quantity, r.case), "missing")
-            if status != "reproduced":
-                problems.append(f"{diff_path}: {r.item} / {r.quantity} / {r.case} was reproduced, now {status}")
+            if status != r.status:
+                problems.append(f"{diff_path}: {r.item} / {r.quantity} / {r.case} was {r.status}, now {status}")
     return problems, compared
 
 
@@ -193,7 +193,7 @@ def reproduce_check(inputs, outputs, params):
     if compared == 0:
         report.append("warning: no committed copies found (not a git checkout?); only the current diff was checked")
     now = pd.read_csv(inputs.diff)
-    report.append("diff status counts: " + ", ".join(f"{s} {int((now.status == s).sum())}" for s in reference.STATUSES))
+    report.append("diff status counts: " + ", ".join(f"{s} {int((now.status == s).sum())}" for s in diff_rows.STATUSES))
     report += problems
     print("\n".join(report))
     if problems:
