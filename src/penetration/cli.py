@@ -56,7 +56,7 @@ def _keywords(pairs):
 def _predict(args) -> int:
     """Predict the shots of a CSV file; nothing is written unless at least one row could be predicted."""
     from .io import read_rows, write_rows
-    from .shots import predict_rows
+    from .shots import output_fields, predict_rows
     src, out = Path(args.shots), Path(args.out)
     if out.is_dir():
         return _fail(f"--out {args.out} is a directory; allowed: the path of a CSV file to write")
@@ -72,7 +72,7 @@ def _predict(args) -> int:
     if not good:
         return _fail(f"no shot in {args.shots} could be predicted ({len(rows)} rows); nothing written")
     try:
-        write_rows(out, [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"], good)
+        write_rows(out, output_fields(fields), good)
     except OSError as err:
         name = str(err.filename or "")
         where = "" if name in ("", str(out)) else f" (directory {out.parent})" if name.endswith(".tmp") else f" ({name})"

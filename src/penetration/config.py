@@ -5,13 +5,14 @@ raised before any computation starts.
 """
 from __future__ import annotations
 
-import csv
 import json
 import math
 from pathlib import Path
 
 import jsonschema
 import yaml
+
+from .reference import load_reference
 
 
 class ConfigError(ValueError):
@@ -162,8 +163,7 @@ def check_config(cfg: dict, schema_path, source: str) -> dict:
                for dotted in FILE_FIELDS for value in _values(cfg, dotted) if not Path(value).is_file()]
     if missing:
         raise ConfigError("\n".join(missing))
-    with open(cfg["reference"], newline="") as fh:
-        ids = {row["id"] for row in csv.DictReader(fh)}
+    ids = load_reference(cfg["reference"])
     unknown = [f"{source}: {dotted}: {value!r} is not an id of {cfg['reference']}; allowed: one of its ids"
                for dotted in REFERENCE_FIELDS for value in _values(cfg, dotted) if value not in ids]
     if unknown:

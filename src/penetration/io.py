@@ -94,7 +94,7 @@ def read_inference(path):
 def read_noses(path) -> dict:
     """Name -> nose from the noses table written by the ``geometry`` task."""
     table = pd.read_csv(path)
-    return {r.name: make_nose(r.kind, **json.loads(r.params)) for r in table.itertuples()}
+    return {r.name: nose_from_record({"kind": r.kind, "params": json.loads(r.params)}) for r in table.itertuples()}
 
 
 # ------------------------------------------------------------------ CSV rows

@@ -17,7 +17,7 @@ from . import config
 from .geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from .hjc_effects import MATERIAL_EFFECTS
 from .resistance import Target, strength_factor
-from .trajectory import EFFECTS
+from .trajectory import EFFECTS, EXCLUDES
 
 MAX_VELOCITIES = 1000
 # Level -> (effects it can use, effects it must have, what it is). The analytic
@@ -27,7 +27,7 @@ MAX_VELOCITIES = 1000
 LEVELS = {
     "analytic": ({"crater", "static", "inertial"}, {"crater", "static", "inertial"}, "Eq 9"),
     "trajectory": (set(EFFECTS) - {"cavity"}, {"static"}, "the rigid-body trajectory with Eq 7's terms"),
-    "cavity": ({"crater", "nose_entry", "cavity", "friction"} | set(MATERIAL_EFFECTS), {"cavity"},
+    "cavity": (set(EFFECTS) - EXCLUDES["cavity"] | set(MATERIAL_EFFECTS), {"cavity"},
                "the trajectory with the HJC cavity-expansion law"),
 }
 

@@ -76,6 +76,11 @@ def predicted_depth(row, law="li_chen") -> float:
     return depth
 
 
+def output_fields(fields):
+    """Header of the predictions: the input's fields, then dop_pred_m (replacing one the input already has)."""
+    return [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"]
+
+
 def predict_rows(rows, law="li_chen"):
     """Predicted depths for shot rows: (rows with dop_pred_m added, 'row N: reason' per skipped row).
 

@@ -10,7 +10,7 @@ from ..geometry import Ogive
 from ..io import read_rows, task, write_csv, write_json, write_rows
 from ..nstar import nstar
 from ..resistance import Target, strength_factor
-from ..shots import predict_rows
+from ..shots import output_fields, predict_rows
 from .common import PLAIN, scene_from_inputs
 
 
@@ -87,4 +87,4 @@ def validation_predictions(inputs, outputs, params):
     print(f"predicted {len(good)} shots; skipped {len(problems)}")
     for p in problems:
         print(p)
-    write_rows(outputs.csv, [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"], good)
+    write_rows(outputs.csv, output_fields(fields), good)
