@@ -17,7 +17,7 @@ STUDIES = load_studies("workflow/studies", "workflow/schemas/study.schema.json")
 SCENE_SCHEMA = "workflow/schemas/scene.schema.json"
 GEOMETRY_RESULTS = dict(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json")
 FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig12", "fig14", "fig15",
-           "fig16", "validation", "cavity_sigma_n", "cavity_table3_sensitivity"]
+           "fig16", "validation", "cavity_sigma_n", "cavity_table3_sensitivity", "nose_contrasts"]
 TABLES = ["table1", "table2", "table3", "table4"]
 # Files whose content depends on the machine's speed (not compared by the reproduction check).
 TIMING = ["figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_trajectory.csv",
@@ -34,6 +34,7 @@ include: "workflow/rules/analytic.smk"
 include: "workflow/rules/trajectory.smk"
 include: "workflow/rules/cavity.smk"
 include: "workflow/rules/cavity_studies.smk"
+include: "workflow/rules/contrasts.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reference.smk"
 

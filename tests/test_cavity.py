@@ -74,3 +74,35 @@ def test_erosion_strain_weakens_the_wall_monotonically_and_vanishes_when_large()
              for fs in (1e3, 1.0, 0.3, 0.1)]
     assert walls[0] == pytest.approx(ref, rel=1e-12)  # never reached: same as no erosion
     assert np.all(np.diff(walls) < 0) and walls[-1] < 0.8 * ref
+
+
+def test_quasi_static_epp_against_hill_closed_form():
+    """Hill (1950): a spherical cavity opened quasi-statically in an elastic-perfectly-plastic solid needs
+    p = (2Y/3) (1 + ln(E / (3 (1 - nu) Y))). The solver's quasi-static value is the v^2 extrapolation to
+    v = 0 of two slow expansions, as the sigma_n table's v = 0 node; Hill's form neglects terms of order
+    Y/E (here 3e-3) in the plastic zone's compressibility, so 1 % is the tolerance."""
+    from penetration.cavity_level import quasi_static_stress
+    mat = Simple(RHO, K, G, Y=100e6)
+    E, nu = 9 * K * G / (3 * K + G), (3 * K - 2 * G) / (2 * (3 * K + G))
+    hill = 2 * mat.Y / 3 * (1 + math.log(E / (3 * (1 - nu) * mat.Y)))
+    slow = (50.0, 100.0)
+    ours = quasi_static_stress(slow, [expand(mat, v, 0.07, Mesh(zones=100), Controls(tol=1e-6)).wall_stress
+                                      for v in slow])
+    assert ours == pytest.approx(hill, rel=1e-2)
+    assert hill == pytest.approx(392.6e6, rel=1e-3)  # the number the closed form gives for these constants
+
+
+@pytest.mark.parametrize("V", [50.0, 800.0])
+def test_radial_cracking_caps_the_hoop_stress_and_weakens_the_wall(V):
+    """With hoop_cutoff the hoop stress -p - s_r/2 never exceeds the damaged tensile strength T (1 - D);
+    without it the elastic region outside the damaged zone carries several T. Capping a principal
+    stress can only lower the resistance."""
+    import dataclasses
+    base = HJC()
+    cracked = dataclasses.replace(base, hoop_cutoff=True)
+    mesh, ctl = Mesh(zones=100, cap=40.0), Controls(tol=1e-6)
+    plain, crack = expand(base, V, 0.07, mesh, ctl), expand(cracked, V, 0.07, mesh, ctl)
+    hoop = lambda prof: -prof["p"] - 0.5 * prof["s_r"]
+    assert hoop(plain.profile).max() > 2.0 * base.T
+    assert np.all(hoop(crack.profile) <= base.T * (1 - crack.profile["D"]) + 1e-3 * base.T)
+    assert crack.wall_stress < plain.wall_stress

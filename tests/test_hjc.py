@@ -194,3 +194,25 @@ def test_erosion_strain_removes_deviatoric_stress_and_keeps_pressure():
 def test_erosion_strain_validated():
     with pytest.raises(ParameterError, match="erosion_strain"):
         HJC(erosion_strain=0.0)
+
+
+def test_extended_crushing_lock_keeps_mul_as_offset_and_meets_the_dense_curve_at_pl():
+    """Extended convention (SPHinXsys HJCSolid): the dense curve k1 x + k2 x^2 + k3 x^3 with x = (mu - mul)/(1 + mul)
+    is zero at mul; the crushing line runs from (muc, pc) to where that curve reaches pl (about 0.1106)."""
+    ext = HJC(lock="extended")
+    q = ext.as_array()
+    x = (ext.mu_crush_end - ext.mul) / (1 + ext.mul)
+    assert ext.k1 * x + ext.k2 * x**2 + ext.k3 * x**3 == pytest.approx(ext.pl, rel=1e-12)
+    assert ext.mu_crush_end == pytest.approx(0.1106, abs=1e-4)
+    assert ext.mu_lock == ext.mul
+    assert loading_pressure(ext.mu_crush_end, q) == pytest.approx(ext.pl, rel=1e-12)
+    assert loading_pressure(ext.mu_crush_end + 1e-9, q) == pytest.approx(ext.pl, rel=1e-6)  # continuous
+    mid = 0.5 * (ext.muc + ext.mu_crush_end)
+    assert loading_pressure(mid, q) == pytest.approx(0.5 * (ext.pc + ext.pl), rel=1e-12)  # a straight crushing line
+    mus = np.linspace(0, 0.25, 5001)
+    assert np.all(np.diff([loading_pressure(m, q) for m in mus]) > 0)  # monotone, no drop at mul
+    # unloading from the dense region returns along the dense curve to zero at mul
+    _, st = hydro(0.15, material=ext)
+    out, _ = hydro(0.105, n=200, state=st, material=ext)
+    xb = (0.105 - ext.mul) / (1 + ext.mul)
+    assert out["p"][-1] == pytest.approx(ext.k1 * xb + ext.k2 * xb**2 + ext.k3 * xb**3, rel=1e-6)

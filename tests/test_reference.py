@@ -90,3 +90,29 @@ def test_calibrated_agreement_has_its_own_status():
     assert compare(r, 5.0).status == "reproduced"
     assert compare(r, 5.0, calibrated=True).status == "agrees-after-calibration"
     assert compare(r, 9.0, calibrated=True).status == "deviates"
+
+
+def test_contrast_claims_use_the_least_gain_over_table3_velocities():
+    """'+10 % over CRH 3 at the same velocity' is a lower bound: one velocity below it makes the level deviate,
+    and a calibrated level that meets it agrees only after calibration."""
+    from penetration.diff import CONTRAST_LEVELS, contrast_rows
+    from penetration.tasks.contrasts import contrast_rows as gather
+    refs = load_reference(REF)
+    claim = refs["text.gain_pct_crh3"].quantity
+
+    def rows_for(do500):
+        depths = {}
+        for v, do, crh45, crh3 in ((500.0, do500, 2.0, 1.9), (1200.0, 9.0, 8.0, 7.0)):
+            depths.update({("double_ogive", v): do, ("crh45", v): crh45, ("crh3", v): crh3})
+        return [r for level, variant, _ in CONTRAST_LEVELS for r in gather(depths, level, variant, "table3")]
+
+    rows = rows_for(2.2)
+    ratios = {(r["contrast"], r["velocity"]): r["ratio"] for r in rows if r["level"] == "cavity"}
+    assert ratios[("DO/CRH 4.5", 1200.0)] == pytest.approx(1.125, rel=1e-14)
+    assert ratios[("CRH 4.5/CRH 3", 500.0)] == pytest.approx(2.0 / 1.9, rel=1e-14)
+    least = [r for r in contrast_rows(refs, rows) if r.quantity == claim]
+    assert len(least) == len(CONTRAST_LEVELS)
+    assert all(r.ours == pytest.approx(100 * (2.2 / 1.9 - 1), rel=1e-12) for r in least)  # 500 m/s: the smaller gain
+    assert [r.status for r in least] == ["agrees-after-calibration", "reproduced", "agrees-after-calibration"]
+    low = [r for r in contrast_rows(refs, rows_for(2.05)) if r.quantity == claim]  # +7.9 % at 500 m/s
+    assert {r.status for r in low} == {"deviates"}

@@ -152,3 +152,26 @@ def test_trajectory_monotone_in_velocity_for_hard_noses_and_strengths(fc, nose):
         assert tr.depth == pytest.approx(float(penetration_depth(81.1, 0.07, n, tg, vs)), rel=1e-6)
         depths.append(tr.depth)
     assert np.all(np.diff(depths) > 0)
+
+
+@pytest.mark.parametrize("fraction", [0.0, 0.3, 0.9, 1.0, 1.5, 4.0])
+def test_crater_coefficient_of_eq7_and_of_a_general_law(fraction):
+    """With Forrestal's sigma_n = S fc + rho v_n^2 integrated over the nose, F(V) = pi a^2 (S fc + N* rho V^2), so
+    Eq 7's crater coefficient and the general one (any sigma_n law; the cavity level) solve the same c 4a = F(V1),
+    V1^2 = vs^2 - 16 a^2 c / m, and agree above the critical velocity. Below it the closed form continues to
+    V1^2 < 0 (Li & Chen's shallow branch) while the general law takes c = F(0)/4a: larger by at most the factor
+    1 + 4 pi a^3 N* rho / m (reached at vs = 0)."""
+    from penetration.resistance import crater_coefficient
+    from penetration.trajectory import cavity_crater_coefficient
+    m, a, nose = 81.1, 0.07, Ogive(3, 0.07)
+    n = nstar(nose)
+    vs = fraction * math.sqrt(4 * math.pi * a**3 * TG.R / m)
+    force = lambda v: math.pi * a * a * (TG.R + n * TG.rho * v * v)
+    closed, general = float(crater_coefficient(m, a, n, TG, vs)), cavity_crater_coefficient(m, a, vs, force)
+    if fraction >= 1.0:
+        assert closed == pytest.approx(general, rel=1e-10)
+    else:
+        bound = 1 + 4 * math.pi * a**3 * n * TG.rho / m
+        assert 1.0 < general / closed <= bound * (1 + 1e-12)
+        if fraction == 0.0:
+            assert general / closed == pytest.approx(bound, rel=1e-12)

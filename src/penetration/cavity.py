@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from .hjc import HJC, I_G, I_K1, I_KE, eos, fracture_strain, unloading_modulus, yield_stress
+from .hjc import (HJC, I_DAMAGE, I_G, I_HOOP, I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_T, eos, fracture_strain,
+                  unloading_modulus, yield_stress)
 
 ELASTIC, EPP, MOHR_COULOMB, HJC_KIND = 0, 1, 2, 3
 
@@ -78,6 +79,7 @@ class Controls:
     cfl: float = 0.5
     q_quad: float = 1.5
     q_lin: float = 0.06
+    quasi_static_from: tuple = (50.0, 100.0)  # rate-free runs behind the v = 0 node of a sigma_n table (m/s)
 
 
 @dataclass
@@ -107,7 +109,7 @@ def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg, eps
     sr[j] += 2.0 * G * (de_r - de_v / 3.0)
     if kind == HJC_KIND:
         pn, mumax[j], mup_new = eos(mu, mumax[j], q)
-        pn = max(pn, -q[7] * (1.0 - dmg[j]))  # I_T = 7
+        pn = max(pn, -q[I_T] * (1.0 - dmg[j]))
         sy = yield_stress(pn, dmg[j], eps[j], rate, q)
     else:
         pn = q[2] * mu / (1.0 + mu)  # K (1 - rho0/rho), the Forrestal-Luk equation of state
@@ -123,13 +125,19 @@ def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg, eps
     if seq > sy:
         dep = (seq - sy) / (3.0 * G)
         sr[j] *= sy / seq
+    if kind == HJC_KIND and q[I_HOOP] > 0.5:
+        # radial cracking: hoop stress -p - s_r/2 <= T (1 - D), returned at fixed pressure
+        floor = -2.0 * (pn + q[I_T] * (1.0 - dmg[j]))
+        if sr[j] < floor:
+            dep += 1.5 * (floor - sr[j]) / (3.0 * G)
+            sr[j] = floor
     eps[j] += dep
     if kind == HJC_KIND:
         dmu = max(mup_new - mup[j], 0.0)
         mup[j] = mup_new
-        if q[25] > 0.5:  # I_DAMAGE
+        if q[I_DAMAGE] > 0.5:
             dmg[j] = min(1.0, dmg[j] + (dep + dmu) / fracture_strain(pn, q))
-        pn = max(pn, -q[7] * (1.0 - dmg[j]))
+        pn = max(pn, -q[I_T] * (1.0 - dmg[j]))
     p[j] = pn
 
 
@@ -137,9 +145,9 @@ def _stress_update(kind, q, j, mu, de_r, de_v, rate, sr, p, mumax, mup, dmg, eps
 def _sound_speed(kind, q, mu, mumax, rho):
     if kind == HJC_KIND:
         K = max(q[I_KE], unloading_modulus(mumax, q))
-        mb = mu - q[21]  # I_MULOCK
+        mb = mu - q[I_MULOCK]
         if mb > 0:
-            K = max(K, q[I_K1] + 2 * q[18] * mb + 3 * q[19] * mb * mb)
+            K = max(K, q[I_K1] + 2 * q[I_K2] * mb + 3 * q[I_K3] * mb * mb)
         return math.sqrt((K + 4.0 * q[I_G] / 3.0) / rho)
     return math.sqrt((q[2] + 4.0 * q[1] / 3.0) / rho)
 
@@ -269,12 +277,14 @@ def expand(model, V, radius=0.07, mesh: Mesh = Mesh(), controls: Controls = Cont
     return res
 
 
-def stress_table(model, velocities, radius=0.07, mesh: Mesh = Mesh(), controls: Controls = Controls(), workers=2):
+def stress_table(model, velocities, radius=0.07, mesh: Mesh = Mesh(), controls: Controls = Controls(), workers=2,
+                 starts=None):
     """Steady wall stress at each velocity (Pa).
 
     Velocities are dealt to ``workers`` threads (the kernel releases the
     GIL); each thread walks its share from fast to slow, starting every run
-    from the previous converged profile.
+    from the previous converged profile, or from ``starts[v]`` (a profile
+    per velocity) when given.
     """
     from concurrent.futures import ThreadPoolExecutor
     vs = sorted((float(v) for v in velocities), reverse=True)
@@ -283,7 +293,7 @@ def stress_table(model, velocities, radius=0.07, mesh: Mesh = Mesh(), controls: 
     def walk(chain):
         out, prev = {}, None
         for v in chain:
-            res = expand(model, v, radius, mesh, controls, start=prev)
+            res = expand(model, v, radius, mesh, controls, start=starts.get(v, prev) if starts else prev)
             out[v], prev = res, res.profile
         return out
 

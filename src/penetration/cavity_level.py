@@ -2,10 +2,11 @@
 
 sigma_n(v_n) comes from the dynamic spherical cavity expansion in HJC
 concrete (``penetration.cavity``); the trajectory engine integrates it over
-the nose surface (``cavity`` effect). Below the slowest computed velocity
-the table is extended to v = 0 by a straight line in v^2 through its two
-slowest points (flagged in the table output), above the fastest by a
-straight line in v^2 through its two fastest points.
+the nose surface (``cavity`` effect). The v = 0 node is the quasi-static
+cavity stress (rate term off, inertia removed by extrapolation in v^2 from
+two slow velocities; flagged ``extrapolated`` in the table output);
+above the fastest node the table continues as a straight line in v^2
+through its two fastest points.
 
 Between the nodes the table is a monotone cubic (PCHIP) in w = v^2: exact
 for Forrestal's form sigma = A + B v^2, monotone like the wall stress, and
@@ -59,13 +60,33 @@ class SigmaTable:
 
 
 def sigma_table(material: HJC, velocities, radius, mesh: Mesh = Mesh(), controls: Controls = Controls()):
-    """Cavity-expansion table for ``material`` and the per-velocity solver results."""
+    """Cavity-expansion table for ``material`` and the per-velocity solver results.
+
+    The v = 0 node is the quasi-static cavity stress: the material with its
+    rate term off, expanded at the two velocities ``controls.quasi_static_from``
+    (each run started from the converged rate-dependent profile at that
+    velocity when the table has one) and extrapolated to v = 0 as a straight
+    line in v^2, which removes the inertial part (exact for Forrestal's
+    A + B v^2; the quasi-static study of ``figures/accuracy_cavity.csv``
+    compares pairs and direct slow expansions). Its results are the last two
+    of ``results``.
+    """
     v = np.sort(np.asarray(velocities, float))
     s, results = stress_table(material, v, radius, mesh, controls)
-    v1, v2, s1, s2 = v[0], v[1], s[0], s[1]
-    s0 = s1 - (s2 - s1) * v1**2 / (v2**2 - v1**2)
+    slow = np.asarray(controls.quasi_static_from, float)
+    if not (slow.size == 2 and 0 < slow[0] < slow[1]):
+        raise ValueError(f"cavity quasi_static_from = {list(slow)} is not allowed: two velocities 0 < v1 < v2 (m/s)")
+    profiles = {float(x): r.profile for x, r in zip(v, results)}
+    s_qs, quasi = stress_table(dataclasses.replace(material, rate=False), slow, radius, mesh, controls,
+                               starts={float(x): profiles[float(x)] for x in slow if float(x) in profiles})
+    s0 = quasi_static_stress(slow, s_qs)
     return SigmaTable(np.concatenate(([0.0], v)), np.concatenate(([s0], s)),
-                      np.concatenate(([True], np.zeros(v.size, bool)))), results
+                      np.concatenate(([True], np.zeros(v.size, bool)))), results + quasi
+
+
+def quasi_static_stress(v, s):
+    """Value at v = 0 of the straight line in v^2 through (v[0], s[0]) and (v[1], s[1])."""
+    return s[0] - (s[1] - s[0]) * v[0] ** 2 / (v[1] ** 2 - v[0] ** 2)
 
 
 def cavity_trajectory(nose, mass, vs, table: SigmaTable, effects=("crater", "cavity"), mu=0.0, rtol=1e-9):

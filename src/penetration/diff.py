@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from scipy.interpolate import PchipInterpolator
 
-from .reference import TABLE3_NOSES, VELOCITIES, Ref
+from .reference import TABLE3_NOSES, UNITS, VELOCITIES, Ref
 
 COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
 STATUSES = ("reproduced", "agrees-after-calibration", "deviates", "paper-inconsistent", "not-derivable")
@@ -231,11 +231,37 @@ def fig05_rows(refs, ours):
             compare(R["fig05.do_below_crh3"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh3"])]
 
 
-def summary(rows, findings, pending) -> str:
-    """Markdown summary: counts per status, worst deviations, findings."""
+CONTRAST_COLUMNS = (("paper_sim", "paper sim."), ("paper_calc", "paper calc."), ("analytic", "Eq 9 (S cal.)"),
+                    ("analytic_stated_S", "Eq 9 (stated S)"), ("trajectory", "trajectory"), ("cavity", "cavity"))
+
+
+def contrast_summary(table, velocities=(500.0, 1200.0)) -> list:
+    """Markdown lines: the nose-shape contrasts at the given velocities, every source side by side.
+
+    table: rows of ``figures/nose_contrasts_table.csv`` (ratio and gain per source, the
+    cavity variants' range).
+    """
+    head = " | ".join(label for _, label in CONTRAST_COLUMNS)
+    lines = ["## Nose-shape contrasts: the paper's conclusions (figures/nose_contrasts_table.csv)", "",
+             "Depth ratios; every level except the stated-S Eq 9 is calibrated on DO1, so these contrasts, not the "
+             "absolute depths, are what a calibration cannot set. Cavity variants: the range over the calibration "
+             "variants of figures/cavity_table3_sensitivity.csv.", "",
+             f"| contrast | v (m/s) | {head} | cavity variants |", "|---|---|" + "---|" * (len(CONTRAST_COLUMNS) + 1)]
+    for r in table:
+        if r["velocity"] in velocities:
+            cells = " | ".join(f"{r[f'{k}_ratio']:.3f}" for k, _ in CONTRAST_COLUMNS)
+            lines.append(f"| {r['contrast']} | {r['velocity']:.0f} | {cells} | "
+                         f"{r['cavity_variants_min_ratio']:.3f}-{r['cavity_variants_max_ratio']:.3f} |")
+    return lines + [""]
+
+
+def summary(rows, findings, pending, contrasts=()) -> str:
+    """Markdown summary: counts per status, the nose contrasts, worst deviations, findings."""
     lines = ["# Reproduction diff", "", "| status | rows |", "|---|---|"]
     for s in STATUSES:
         lines.append(f"| {s} | {sum(r.status == s for r in rows)} |")
+    if len(contrasts):
+        lines += [""] + contrast_summary(contrasts)
     lines += ["", "## Largest relative errors among compared values (equalities with a tolerance)", "",
               "| item | quantity | case | paper | ours | rel_err | tol | status |", "|---|---|---|---|---|---|---|---|"]
     worst = sorted((r for r in rows if r.status in AGREES + ("deviates",) and r.tol > 0),
@@ -343,7 +369,7 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
     """Cavity level: Table 3's simulation column, the 1200 m/s gains, Fig 14, Fig 12.
 
     table3: rows with velocity_ms, nose, cavity_m; cavity: rows of the cavity
-    Table 3 scene (nose, velocity, peak_deceleration, duration).
+    Table 3 scene (nose, velocity, peak_deceleration_m_s2, duration).
     """
     R, rows = refs, []
     for r in table3:
@@ -355,8 +381,8 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
         rows.append(compare(R[key], by[(1200, "double_ogive")] - by[(1200, other)], case="1200 (ours: cavity level)",
                             calibrated=True))
     at = {(c["nose"], c["velocity"]): c for c in cavity}
-    for ref_id, other, q in (("fig14.peak_do_below_crh3", "crh3", "peak_deceleration"),
-                             ("fig14.peak_do_below_crh45", "crh45", "peak_deceleration"),
+    for ref_id, other, q in (("fig14.peak_do_below_crh3", "crh3", "peak_deceleration_m_s2"),
+                             ("fig14.peak_do_below_crh45", "crh45", "peak_deceleration_m_s2"),
                              ("fig14.pulse_do_longer_crh3", "crh3", "duration"),
                              ("fig14.pulse_do_longer_crh45", "crh45", "duration")):
         ref = R[ref_id]
@@ -364,6 +390,17 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
             diff = at[("double_ogive", v)][q] - at[(other, v)][q]
             rows.append(_row(ref, ref.quantity + " (relative)", f"{v:.0f} m/s (cavity level)", diff / at[(other, v)][q],
                              agreement(holds(ref.relation, 0.0, diff, 0.0), True)))
+    for v in sorted({c["velocity"] for c in cavity}):
+        at_v = [c for c in cavity if c["velocity"] == v]
+        peak = max(at_v, key=lambda c: c["peak_deceleration_m_s2"])
+        longest = max(c["duration"] for c in at_v)
+        ref = R[f"fig14.g_axis_max.{v:.0f}"]
+        rows.append(compare(ref, peak["peak_deceleration_m_s2"] / UNITS[ref.unit],
+                            case=f"{v:.0f} m/s: largest peak (g; {peak['nose']}; cavity level)", calibrated=True))
+        for kind in ("t_axis_max", "t_axis_last"):
+            ref = R[f"fig14.{kind}.{v:.0f}"]
+            rows.append(compare(ref, longest / UNITS[ref.unit], case=f"{v:.0f} m/s: longest time to rest (ms; cavity level)",
+                                calibrated=True))
     ref = R["table2.dop"]
     rows.append(_row(ref, "dop", f"DO1 (cavity level; strength scale {scale:.4g} calibrated to it)", do1_depth,
                      "not-derivable"))
@@ -371,4 +408,29 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
         rows.append(unstated(R["table1.fs"], erosion_strain,
                              case="cavity level: plastic strain beyond which the target carries no deviatoric stress; "
                                   "calibrated on DO1 (the paper's fs erodes elements of its unstated 3-D mesh)"))
+    return rows
+
+
+# the model levels whose nose contrasts are compared with the text's claims: (level, variant, calibrated)
+CONTRAST_LEVELS = (("analytic", "Eq 9, S calibrated on DO1", True), ("analytic", "Eq 9, S = 72 fc^-0.5", False),
+                   ("cavity", "strength scale calibrated on DO1", True))
+
+
+def contrast_rows(refs, contrasts):
+    """The text's '+10 % over CRH 3, +5 % over the equivalent nose at the same velocity' at each model level.
+
+    contrasts: rows (level, variant, source, velocity, contrast, ratio, gain_m) of
+    the nose-contrast table; the claim is read as a lower bound over Table 3's
+    velocities, so ours is the smallest gain over them.
+    """
+    rows = []
+    for key, contrast in (("text.gain_pct_crh3", "DO/CRH 3"), ("text.gain_pct_crh45", "DO/CRH 4.5")):
+        ref = refs[key]
+        for level, variant, calibrated in CONTRAST_LEVELS:
+            sel = [c for c in contrasts if c["level"] == level and c["variant"] == variant
+                   and c["source"] == "table3" and c["contrast"] == contrast]
+            least = min(sel, key=lambda c: c["ratio"])
+            rows.append(compare(ref, 100 * (least["ratio"] - 1), calibrated=calibrated,
+                                case=f"smallest over 500-1200 m/s ({least['velocity']:.0f} m/s; {level}: "
+                                     f"{variant.replace(',', ';')})"))
     return rows

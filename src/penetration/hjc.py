@@ -10,11 +10,17 @@ parameter where codes disagree:
 - Elastic constants: Table 1's "K" = 14.86 GPa is the shear modulus G of
   the 1993 HJC set; the elastic bulk modulus is Ke = pc/muc (Eq 12).
   Table 1's "E" is unused.
-- Lock strain (``lock``): "offset" (default) makes the fully dense curve of
-  Eq 15 pass through (mul, pl), i.e. mu_lock solves k1 x + k2 x^2 + k3 x^3
-  = pl with mu_lock = (mul - x)/(1 + x) = 0.0895; "literal" uses
-  mu_lock = mul, which drops the pressure from pl to 0 at mul (negative
-  tangent band up to mu = 0.1106).
+- Lock strain (``lock``), three conventions. "offset" (default; no open
+  code found that does exactly this) makes the fully dense curve of Eq 15
+  pass through (mul, pl): mu_lock solves k1 x + k2 x^2 + k3 x^3 = pl with
+  mu_lock = (mul - x)/(1 + x) = 0.0895, and crushing ends at mul = 0.10 as
+  Table 1 reads. "literal" (the paper's Eq 15 as printed; OpenRadioss
+  LAW126 is close to it) uses mu_lock = mul, which drops the pressure from
+  pl to 0 at mul (negative tangent band up to mu = 0.1106). "extended"
+  (SPHinXsys ``HJCSolid`` and, as far as known, HJC 1993) keeps mu_lock =
+  mul as the permanent offset of the dense curve and extends the crushing
+  line from (muc, pc) to where that curve reaches pl, mu = mul + x (1 + mul)
+  = 0.1106 (``mu_crush_end``).
 - Unloading in the crushing stage (Eq 14) uses the fully dense modulus k1
   for the paper's "plastic volume modulus" K.
 - Tension branch of the strength surface (``tension``): "openradioss"
@@ -28,9 +34,18 @@ parameter where codes disagree:
 - Tension cut-off p >= -T(1 - D) in every region, re-applied after the
   damage update.
 - Switches for ablation studies: ``rate`` (C term), ``damage`` (D frozen at
-  0) and ``strength_scale``, a factor on the whole strength surface (the
-  in-situ strength relative to the laboratory parameter set; the one
-  parameter calibrated on the DO1 shot at the cavity level).
+  0) and ``strength_scale``, a factor on the whole strength surface: a
+  lumped factor that stands for whatever makes the target weaker than the
+  laboratory set in a given model (cracking, erosion, a near rear face),
+  not an in-situ strength; the one parameter calibrated on the DO1 shot at
+  the cavity level.
+- ``hoop_cutoff`` (default off): radial cracking. In spherical symmetry the
+  hoop stress is limited to the damaged tensile strength T (1 - D) by a
+  deviatoric return at fixed pressure (the pressure cut-off alone caps the
+  mean stress, not the largest principal stress, so without it the hoop
+  stress outside the damaged zone reaches several T where real concrete
+  cracks radially; Forrestal & Tzou 1997 model that region with zero hoop
+  stress). Used by the spherical cavity solver only.
 - ``erosion_strain`` (default inf: off): once the accumulated equivalent
   plastic strain reaches it, the point keeps its pressure but carries no
   deviatoric stress. A continuum stand-in for LS-DYNA's element erosion at
@@ -49,8 +64,10 @@ from .geometry import ParameterError
 
 # indices into the parameter array used by the compiled kernels
 (I_RHO0, I_G, I_A, I_B, I_C, I_N, I_FC, I_T, I_EPS0, I_EFMIN, I_SMAX, I_PC, I_MUC, I_PL, I_MUL, I_D1, I_D2,
- I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR, I_SCALE, I_DAMAGE, I_EROSION) = range(27)
-LOCKS = ("offset", "literal")
+ I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR, I_SCALE, I_DAMAGE, I_EROSION,
+ I_HOOP) = range(28)
+I_MUCRUSH = I_MUL  # the slot of mul holds the end of crushing (mul, or 0.1106 for the extended convention)
+LOCKS = ("offset", "literal", "extended")
 TENSIONS = ("openradioss", "sphinxsys")
 
 
@@ -84,6 +101,7 @@ class HJC:
     damage: bool = True
     strength_scale: float = 1.0
     erosion_strain: float = math.inf
+    hoop_cutoff: bool = False
 
     def __post_init__(self):
         positive = ("rho0", "G", "A", "fc", "T", "eps0", "efmin", "smax", "pc", "muc", "pl", "mul", "D1", "k1")
@@ -113,10 +131,17 @@ class HJC:
     @property
     def mu_lock(self):
         """Volumetric strain at which the fully dense curve has zero pressure."""
-        if self.lock == "literal":
+        if self.lock in ("literal", "extended"):
             return self.mul
         x = _dense_root(self.k1, self.k2, self.k3, self.pl)
         return (self.mul - x) / (1.0 + x)
+
+    @property
+    def mu_crush_end(self):
+        """Volumetric strain where crushing ends and the fully dense curve takes over."""
+        if self.lock != "extended":
+            return self.mul
+        return self.mul + _dense_root(self.k1, self.k2, self.k3, self.pl) * (1.0 + self.mul)
 
     @property
     def E(self):
@@ -130,9 +155,10 @@ class HJC:
 
     def as_array(self) -> np.ndarray:
         vals = [self.rho0, self.G, self.A, self.B, self.C if self.rate else 0.0, self.N, self.fc, self.T, self.eps0, self.efmin, self.smax,
-                self.pc, self.muc, self.pl, self.mul, self.D1, self.D2, self.k1, self.k2, self.k3, self.Ke,
+                self.pc, self.muc, self.pl, self.mu_crush_end, self.D1, self.D2, self.k1, self.k2, self.k3, self.Ke,
                 self.mu_lock, float(TENSIONS.index(self.tension)), float(self.rate_floor),
-                self.strength_scale, float(self.damage), min(self.erosion_strain, 1e300)]
+                self.strength_scale, float(self.damage), min(self.erosion_strain, 1e300),
+                float(self.hoop_cutoff)]
         return np.array(vals, float)
 
 
@@ -178,15 +204,15 @@ def loading_pressure(mu, q):
     """Virgin loading curve p(mu): Eqs 12, 13, 15."""
     if mu <= q[I_MUC]:
         return q[I_KE] * mu
-    if mu <= q[I_MUL]:
-        return q[I_PC] + (q[I_PL] - q[I_PC]) * (mu - q[I_MUC]) / (q[I_MUL] - q[I_MUC])
+    if mu <= q[I_MUCRUSH]:
+        return q[I_PC] + (q[I_PL] - q[I_PC]) * (mu - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC])
     return dense_pressure(mu, q)
 
 
 @njit(cache=True)
 def unloading_modulus(mu_max, q):
     """(1 - F) Ke + F k1 with F = (mu_max - muc)/(mul - muc), Eq 14."""
-    F = (mu_max - q[I_MUC]) / (q[I_MUL] - q[I_MUC])
+    F = (mu_max - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC])
     F = min(max(F, 0.0), 1.0)
     return (1.0 - F) * q[I_KE] + F * q[I_K1]
 
@@ -203,7 +229,7 @@ def eos(mu, mu_max, q):
         p = loading_pressure(mu, q)
     elif mu_max <= q[I_MUC]:
         p = q[I_KE] * mu
-    elif mu_max <= q[I_MUL]:
+    elif mu_max <= q[I_MUCRUSH]:
         p = loading_pressure(mu_max, q) - unloading_modulus(mu_max, q) * (mu_max - mu)
     else:
         p = dense_pressure(mu, q)
@@ -215,7 +241,7 @@ def permanent_strain(mu_max, q):
     """Crush (plastic volumetric) strain left after unloading from mu_max."""
     if mu_max <= q[I_MUC]:
         return 0.0
-    m = min(mu_max, q[I_MUL])
+    m = min(mu_max, q[I_MUCRUSH])
     return m - loading_pressure(m, q) / unloading_modulus(m, q)
 
 

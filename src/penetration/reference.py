@@ -12,7 +12,7 @@ import csv
 from dataclasses import dataclass
 
 UNITS = {"1": 1.0, "%": 0.01, "m": 1.0, "kg": 1.0, "m/s": 1.0, "1/s": 1.0, "kg/m3": 1.0,
-         "g/cm3": 1e3, "MPa": 1e6, "GPa": 1e9, "ms": 1e-3, "as printed": 1.0}
+         "g/cm3": 1e3, "MPa": 1e6, "GPa": 1e9, "ms": 1e-3, "g": 9.80665, "as printed": 1.0}
 VELOCITIES = (500, 800, 1000, 1200)
 TABLE3_NOSES = ("double_ogive", "crh45", "crh3")
 @dataclass(frozen=True)

@@ -83,6 +83,13 @@ def crater_coefficient(mass, radius, nstar, target: Target, vs):
 
     c 4a = pi a^2 (S fc + N* rho V1^2). Stays positive when V1^2 < 0 (the
     shot stops inside the crater), so the crater law still applies there.
+    Below the critical velocity sqrt(4 pi a^3 S fc / m) this is the
+    algebraic continuation of the continuity condition to V1^2 < 0, the one
+    behind Li & Chen's (2003) published shallow branch; the general crater
+    law of the other levels (``trajectory.cavity_crater_coefficient``) takes
+    c = F(0)/4a there instead. The two differ by the factor
+    1 + 4 pi a^3 N* rho / m at most (DOP by its square root: 0.4 % for DO1,
+    below 131 m/s) and agree above the critical velocity.
     """
     v1sq = crater_velocity_squared(mass, radius, nstar, target, vs)
     return 0.25 * math.pi * radius * (target.R + nstar * target.rho * v1sq)

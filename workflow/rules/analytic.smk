@@ -26,7 +26,7 @@ rule calibrate_table3_calc:
 
 rule infer_diameter_450kg:
     input: **task("tasks.analytic"), **GEOMETRY_RESULTS, scene="workflow/scenes/sec22_450kg.yaml", schema=SCENE_SCHEMA,
-           reference=config["reference"],
+           reference=config["reference"], cal_do1="results/calibration/do1.json",
     output: json="results/geometry/diameter_450kg.json",
     params: nose=config["diameter_450kg"]["nose"], axes=config["diameter_450kg"]["axes"],
     threads: 1

@@ -2,8 +2,8 @@
 
 
 rule cavity_ablation:
-    input: **task("tasks.cavity_studies"), do1="results/geometry/double_ogive_table4.json",
-           cal="results/calibration/cavity_do1.json", reference=config["reference"],
+    input: **task("tasks.cavity_studies"), **GEOMETRY_RESULTS, cal="results/calibration/cavity_do1.json",
+           reference=config["reference"], scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
     output: csv="figures/ablation_cavity.csv", timing="figures/timing/ablation_cavity.csv",
     params: cfg=config["cavity"], shot=config["calibration"]["do1"], study=STUDIES["cavity_ablation"],
     threads: 2

@@ -69,7 +69,7 @@ rule fig07:
 
 
 rule fig08:
-    input: **task("figures.fig08"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv",
+    input: **task("figures.fig08"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", diameter="results/geometry/diameter_450kg.json",
     output: png="figures/fig08.png", csv="figures/fig08.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
@@ -80,7 +80,7 @@ rule fig08:
 
 
 rule fig09:
-    input: **task("figures.fig09"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", reference=config["reference"],
+    input: **task("figures.fig09"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", diameter="results/geometry/diameter_450kg.json", reference=config["reference"],
     output: png="figures/fig09.png", csv="figures/fig09.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
@@ -113,7 +113,7 @@ rule fig12:
 
 
 rule fig14:
-    input: **task("figures.fig14"), histories="results/scenes/cavity/table3_histories.csv",
+    input: **task("figures.fig14"), histories="results/scenes/cavity/table3_histories.csv", reference=config["reference"],
     output: png="figures/fig14.png", csv="figures/fig14.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
@@ -199,7 +199,7 @@ rule validation:
 rule cavity_sigma_n:
     input: **task("figures.cavity_sigma_n"), sigma="results/cavity/sigma_n.csv", cal_do1="results/calibration/do1.json",
            shots="results/scenes/cavity/table3.csv",
-    output: png="figures/cavity_sigma_n.png", csv="figures/cavity_sigma_n.csv",
+    output: png="figures/cavity_sigma_n.png", csv="figures/cavity_sigma_n.csv", static="figures/static_resistance.csv",
     params: dpi=config["figures"]["dpi"], rho=config["cavity_plot"]["rho"], fc=config["cavity_plot"]["fc"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -238,4 +238,15 @@ rule accuracy_cavity:
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/accuracy_cavity.tsv"
     log: "results/logs/accuracy_cavity.log",
+    script: "../scripts/run_task.py"
+
+
+rule nose_contrasts:
+    input: **task("figures.nose_contrasts"), csv="results/contrasts/nose_contrasts.csv", reference=config["reference"],
+    output: png="figures/nose_contrasts.png", csv="figures/nose_contrasts.csv", table="figures/nose_contrasts_table.csv",
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/nose_contrasts.tsv"
+    log: "results/logs/nose_contrasts.log",
     script: "../scripts/run_task.py"

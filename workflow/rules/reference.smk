@@ -20,6 +20,8 @@ rule diff:
         cavity_do1="results/scenes/cavity/do1.csv",
         cal_cavity="results/calibration/cavity_do1.json",
         sensitivity="figures/cavity_table3_sensitivity.csv",
+        contrasts="figures/nose_contrasts.csv",
+        contrast_table="figures/nose_contrasts_table.csv",
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
     threads: 1
     resources: mem_mb=1000, runtime=5

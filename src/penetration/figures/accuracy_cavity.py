@@ -13,7 +13,8 @@ from ..io import task, write_csv
 from .common import figure, save
 
 PANELS = {"zones": "cavity solver: zones", "cfl": "cavity solver: CFL number",
-          "table_nodes": "sigma_n table: nodes (DO1 depth)", "trajectory_rtol": "cavity-level trajectory: rtol"}
+          "table_nodes": "sigma_n table: nodes (DO1 depth)", "trajectory_rtol": "cavity-level trajectory: rtol",
+          "quasi_static": "v = 0 node: rate-free, vs slowest direct run"}
 
 
 @task
@@ -23,10 +24,10 @@ def accuracy_cavity(inputs, outputs, params):
     write_csv(data[["study", "setting", "wall_time_s"]], outputs.timing)
     fig, axes = figure(len(PANELS), 4.2, 3.6)
     fig.subplots_adjust(wspace=0.4)  # room for each panel's y label
-    data["panel"] = data.study.str.replace(r"_(pchip_v2|linear_v)$", "", regex=True)
+    data["panel"] = data.study.str.replace(r"_(pchip_v2|linear_v|pair|direct)$", "", regex=True)
     for ax, (panel, title) in zip(axes, PANELS.items()):
         for study, g in data[data.panel == panel].groupby("study", sort=False):
-            if not study.endswith("linear_v"):
+            if not study.endswith(("linear_v", "quasi_static_pair")):
                 g = g.iloc[:-1]  # the finest run is the reference
             label = study[len(panel) + 1:] or None
             ax.loglog(g.wall_time_s * 1e3, g.rel_error_vs_finest.clip(lower=1e-12), "o-", label=label)

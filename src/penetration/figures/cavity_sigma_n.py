@@ -8,11 +8,29 @@ from ..io import load_json, task, write_csv
 from .common import figure, save
 
 
+def static_resistance(table, S_stated, S_calibrated, fc):
+    """Quasi-static resistances side by side: HJC's cavity stress at v = 0 against S fc of Eq 7.
+
+    ``hjc_table1_over_this``: the laboratory HJC set's quasi-static cavity
+    stress divided by each row's stress.
+    """
+    at0 = table[table.velocity == 0].set_index("material")
+    rows = [{"quantity": f"HJC quasi-static cavity stress ({m}; strength scale {at0.strength_scale[m]:.4g})",
+             "stress_pa": at0.sigma_n[m]} for m in at0.index]
+    rows += [{"quantity": "S fc with S = 72 fc^-0.5 (Li & Chen; paper Eq 7)", "stress_pa": S_stated * fc},
+             {"quantity": f"S fc with S = {S_calibrated:.4g} (calibrated on DO1 with Eq 9)", "stress_pa": S_calibrated * fc}]
+    out = pd.DataFrame(rows)
+    out["over_fc"] = out.stress_pa / fc
+    out["hjc_table1_over_this"] = at0.sigma_n["table1"] / out.stress_pa
+    return out
+
+
 @task
 def cavity_sigma_n(inputs, outputs, params):
     table = pd.read_csv(inputs.sigma)
     cal = load_json(inputs.cal_do1)
     write_csv(table, outputs.csv)
+    write_csv(static_resistance(table, 72 * (params.fc / 1e6) ** -0.5, cal["S"], params.fc), outputs.static)
     fig, (ax,) = figure(1, 6.0, 4.2)
     for (label, g), c in zip(table.groupby("material", sort=False), ("tab:green", "tab:gray")):
         ax.plot(g.velocity, g.sigma_n / 1e6, "o-", color=c, ms=3,

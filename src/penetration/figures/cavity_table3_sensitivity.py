@@ -20,13 +20,13 @@ def cavity_table3_sensitivity(inputs, outputs, params):
     ax.axhspan(-params.goal_pct, params.goal_pct, color="tab:green", alpha=0.08,
                label=f"within {params.goal_pct:g} % of the paper")
     ax.axhline(0.0, color="k", lw=1, label="paper's simulation column (Table 3)")
-    variants = data.groupby(["calibrated", "zones", "friction"], sort=False)
-    for k, ((name, zones, mu), g) in enumerate(variants):
+    variants = data.groupby("variant", sort=False)
+    for k, (label, g) in enumerate(variants):
         shift = (k - (len(variants) - 1) / 2) * 0.09
         xs = [x[(v, n)] + shift for v, n in zip(g.velocity, g.nose)]
         inside = (g.rel_dev_pct.abs() <= params.goal_pct).sum()
         ax.plot(xs, g.rel_dev_pct, "o", ms=4,
-                label=f"{name} = {g.value.iloc[0]:.3g}, {zones} zones, mu {mu:g} ({inside}/{len(g)} inside)")
+                label=f"{label}: {g.calibrated.iloc[0]} = {g.value.iloc[0]:.3g} ({inside}/{len(g)} inside)")
     ax.set_xticks(range(len(labels)), labels, fontsize=7)
     ax.set(xlabel="striking velocity (m/s) and nose", ylabel="cavity level vs paper simulation (%)",
            title="Table 3 at the cavity level: one parameter calibrated on DO1 per variant")

@@ -7,14 +7,25 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import task, write_csv
+from ..io import load_json, task, write_csv
 from ..units import G0
 from .common import color, figure, save
 
 LABELS = {"crh3": "CRH 3", "double_ogive": "double ogive", "crh5": "CRH 5"}
 
 
-def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None, legend_loc="best"):
+def s_choice_note(diameter):
+    """Footnote: the S the Section 2.2 scenes use, and the diameter each other S choice would infer."""
+    lines = [f"S = {diameter['S']:.4g} (Eq 7's stated 72 fc^-0.5 at 35 MPa): d = {diameter['diameter'] * 1e3:.0f} mm "
+             f"({diameter['interval'][0] * 1e3:.0f}-{diameter['interval'][1] * 1e3:.0f} mm) from Fig 9's axes"]
+    for v in diameter["variants"]:
+        where = (f"d = {v['diameter'] * 1e3:.0f} mm ({v['interval'][0] * 1e3:.0f}-{v['interval'][1] * 1e3:.0f} mm)"
+                 if v["diameter"] else "no diameter fits both axes")
+        lines.append(f"variant, {v['S_choice']}: S = {v['S']:.4g}, {where} (not drawn)")
+    return "\n".join(lines)
+
+
+def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None, legend_loc="best", note=None):
     vel = sorted(hist.velocity.unique())
     fig, axes = figure(len(vel), 5.0, 3.8)
     for ax, v in zip(axes, vel):
@@ -31,6 +42,8 @@ def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None, 
         d = 2 * dop.loc[dop.radius_case == "chosen", "radius"].iloc[0]
         ax.set(xlabel="t (ms)", ylabel=ylabel, title=f"{title}, vs = {v:.0f} m/s, d = {d * 1e3:.0f} mm (inferred)")
         ax.legend(fontsize=7, loc=legend_loc)
+    if note:
+        fig.text(0.01, -0.02, note, fontsize=7, va="top", ha="left")
     save(fig, outputs.png, params.dpi)
 
 
@@ -40,4 +53,5 @@ def fig08(inputs, outputs, params):
     dop = pd.read_csv(inputs.dop)
     hist["deceleration_g"] = hist.deceleration / G0
     write_csv(hist[["nose", "radius_case", "velocity", "t", "deceleration_g"]], outputs.csv)
-    panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8", legend_loc="lower right")
+    panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8", legend_loc="lower right",
+           note=s_choice_note(load_json(inputs.diameter)))

@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import task, write_csv
+from ..io import load_json, task, write_csv
 from ..reference import load_reference
-from .fig08 import panels
+from .fig08 import panels, s_choice_note
 
 
 @task
@@ -18,4 +18,5 @@ def fig09(inputs, outputs, params):
     write_csv(hist[["nose", "radius_case", "velocity", "t", "pd_over_d"]], outputs.csv)
     axis = {v: (refs[f"fig09.t_axis_max.{v:.0f}"].value, refs[f"fig09.pd_axis_max.{v:.0f}"].value)
             for v in hist.velocity.unique()}
-    panels(hist, dop, "pd_over_d", outputs, params, "Pd/d", "Fig 9", axis, legend_loc="lower right")
+    panels(hist, dop, "pd_over_d", outputs, params, "Pd/d", "Fig 9", axis, legend_loc="lower right",
+           note=s_choice_note(load_json(inputs.diameter)))

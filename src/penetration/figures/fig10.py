@@ -15,14 +15,14 @@ def fig10(inputs, outputs, params):
     write_csv(data, outputs.csv)
     fig, (ax,) = figure(1, 6.0, 4.4)
     unloads = sorted({p for p in data.path if p != "loading"})
+    styles = {"offset": ("-", 1.6), "literal": (":", 0.9), "extended": ("--", 0.9)}
     for (lock, path), g in data.groupby(["lock", "path"], sort=False):
-        main = lock == "offset"
+        ls, lw = styles[lock]
         first_unload = path == unloads[0]
         label = (f"loading ({lock} lock)" if path == "loading"
                  else f"unloading from mu_max = {', '.join(u.split()[-1] for u in unloads)} ({lock} lock)"
                  if first_unload else None)
-        ax.plot(g.mu, g.p / 1e9, color="tab:blue" if path == "loading" else "tab:orange",
-                lw=1.6 if main else 0.8, ls="-" if main else ":", label=label)
+        ax.plot(g.mu, g.p / 1e9, color="tab:blue" if path == "loading" else "tab:orange", lw=lw, ls=ls, label=label)
     pts = [(refs["table1.muc"].value, refs["table1.pc"].value), (refs["table1.mul"].value, refs["table1.pl"].value)]
     ax.plot(*zip(*pts), **PAPER_STYLE, label="paper: (muc, pc), (mul, pl)")
     ax.axhline(-refs["table1.T"].value, color="k", lw=0.6, ls="--", label="tension cut-off -T")

@@ -17,13 +17,18 @@ def table3(inputs, outputs, params):
     cavity = pd.read_csv(inputs.cavity).set_index(["velocity", "nose"]).cavity_dop
     fit = load_json(inputs.fit)
     fitted = {(c["velocity"], c["nose"]): c["depth"] * (1 + c["relative_residual"]) for c in fit["cells"]}
+    cell_S = {(c["velocity"], c["nose"]): c["S_fitting_this_cell"] for c in fit["cells"]}
+    row_fit = {r["nose"]: r for r in fit["row_fits"]["rows"]}
     rows = []
     for v in VELOCITIES:
         for n in TABLE3_NOSES:
             rows.append({"velocity_ms": v, "nose": n, "paper_sim_m": refs[f"table3.sim.{v}.{n}"].value,
                          "paper_calc_m": refs[f"table3.calc.{v}.{n}"].value, "analytic_m": cal[(v, n)],
                          "cavity_m": cavity[(v, n)],
-                         "analytic_stated_S_m": stated[(v, n)], "analytic_fit_to_calc_m": fitted[(v, n)]})
+                         "analytic_stated_S_m": stated[(v, n)], "analytic_fit_to_calc_m": fitted[(v, n)],
+                         # inferences: S fitting this calculated cell alone; (N*, S) fitting the nose's row alone
+                         "S_fitting_calc_cell": cell_S[(v, n)], "row_fit_nstar": row_fit[n]["nstar"],
+                         "row_fit_S": row_fit[n]["S"], "row_fit_max_abs_residual_m": row_fit[n]["max_abs_residual_m"]})
     t = pd.DataFrame(rows)
     t["rel_dev_analytic_vs_paper_calc_pct"] = 100 * (t.analytic_m / t.paper_calc_m - 1)
     t["rel_dev_analytic_vs_paper_sim_pct"] = 100 * (t.analytic_m / t.paper_sim_m - 1)

@@ -1,13 +1,16 @@
 """Tasks of the analytic stage: Eq 9 calibrations and inferences, Fig 1 shares, validation predictions."""
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pandas as pd
 
 from .. import reference
-from ..calibration import calibrate_strength, fit_strength, infer_diameter, resistance_shares as shares
+from ..calibration import (calibrate_strength, cell_strength, fit_nstar_and_strength, fit_strength, infer_diameter,
+                           resistance_shares as shares)
 from ..geometry import Ogive
-from ..io import read_rows, task, write_csv, write_json, write_rows
+from ..io import load_json, read_rows, task, write_csv, write_json, write_rows
 from ..nstar import nstar
 from ..resistance import Target, strength_factor
 from ..shots import output_fields, predict_rows
@@ -45,8 +48,20 @@ def calibrate_table3_calc(inputs, outputs, params):
     fit = fit_strength(cells, sc.target.rho, sc.target.fc)
     for c, r in zip(cells, fit["relative_residuals"]):
         c["relative_residual"] = r
+        c["S_fitting_this_cell"] = cell_strength(c, sc.target.rho, sc.target.fc)
+    half_unit = 0.5 * 10.0 ** -3  # m: Table 3 prints depths to 1 mm
+    rows = []
+    for n in reference.TABLE3_NOSES:
+        row = fit_nstar_and_strength([c for c in cells if c["nose"] == n], sc.target.rho, sc.target.fc)
+        rows.append({"nose": n, "nstar_of_nose": nstar(sc.noses[n]), **row,
+                     "fits_within_print": row["max_abs_residual_m"] <= 2 * half_unit})
     write_json({"calibration": "table3_calc", "fitted_quantity": "S (one value for all 12 cells)",
-                "model": "Eq 9", "cells": cells, **{k: v for k, v in fit.items() if k != "relative_residuals"}},
+                "model": "Eq 9", "cells": cells, **{k: v for k, v in fit.items() if k != "relative_residuals"},
+                "S_per_cell_range": [min(c["S_fitting_this_cell"] for c in cells),
+                                     max(c["S_fitting_this_cell"] for c in cells)],
+                "row_fits": {"what": "inference: (N*, S) of Eq 9 fitted to each nose's four cells alone; "
+                                     "fits_within_print: every residual within twice the half unit of Table 3's "
+                                     "printed depths (1 mm)", "rows": rows}},
                outputs.json)
 
 
@@ -60,7 +75,20 @@ def infer_diameter_450kg(inputs, outputs, params):
     out = infer_diameter(sc.mass, n, sc.target, axes)
     out.update(rule="Pd/d of the deepest nose lies in the top tick interval of each Fig 9 panel",
                nose=params.nose, nstar=n, axes=[{"velocity": v, "lower": lo, "upper": hi} for v, lo, hi in axes],
-               model="Eq 9 with the scene's target (S from its stated law)")
+               model="Eq 9 with the scene's target (S from its stated law)", S=sc.target.S,
+               decision="Section 2.2 is the paper's analytic section: Eq 9 with Eq 7's stated S = 72 fc^-0.5 at its "
+                        "35 MPa target. The DO1 calibration (48 MPa concrete, Table 3) is an inference about Table 3's "
+                        "calculation column; the paper never applies it to Section 2.2, so it is a variant here.")
+    cal = load_json(inputs.cal_do1)
+    out["variants"] = []
+    for label, S in ((f"S calibrated on DO1 as a factor {cal['S_ratio_to_stated']:.4g} on the stated law",
+                      sc.target.S * cal["S_ratio_to_stated"]),
+                     ("S calibrated on DO1 taken as is (fitted at fc = 48 MPa)", cal["S"])):
+        try:
+            alt = infer_diameter(sc.mass, n, dataclasses.replace(sc.target, S=S), axes)
+        except ValueError as err:  # the axis ranges admit no common diameter with this S
+            alt = {"diameter": None, "interval": None, "error": str(err)}
+        out["variants"].append({"S_choice": label, "S": S, **alt})
     write_json(out, outputs.json)
 
 

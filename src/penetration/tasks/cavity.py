@@ -11,7 +11,7 @@ import pandas as pd
 from .. import reference
 from ..cavity import Controls, Mesh
 from ..cavity_level import SigmaTable, calibrate_parameter, cavity_trajectory, material_switches, sigma_table
-from ..hjc import PointState, drive, from_table1
+from ..hjc import LOCKS, PointState, drive, from_table1
 from ..hjc_effects import MATERIAL_EFFECTS
 from ..io import load_json, read_inference, task, write_csv, write_json
 from ..nstar import nstar
@@ -29,7 +29,8 @@ def table1_hjc(refs, **fields):
 def cavity_settings(cfg):
     """Mesh and solver controls of the cavity solver from the ``cavity`` config slice."""
     return (Mesh(zones=cfg["zones"], cap=cfg["cap"]),
-            Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"]))
+            Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"],
+                     quasi_static_from=tuple(cfg["quasi_static_from"])))
 
 
 def configured_hjc(refs, cfg, **fields):
@@ -60,7 +61,7 @@ def hjc_eos_paths(inputs, outputs, params):
     """Hydrostatic load-unload paths of the HJC equation of state (Fig 10 data)."""
     refs = reference.load_reference(inputs.reference)
     rows = []
-    for lock in ("offset", "literal"):
+    for lock in LOCKS:
         mat = table1_hjc(refs, lock=lock)
         virgin = _hydro_path(mat, PointState.new(), params.mu_top, params.steps)
         rows.append(pd.DataFrame({"lock": lock, "path": "loading", "mu": virgin["mu"], "p": virgin["p"]}))
@@ -92,8 +93,9 @@ def calibrate_cavity_do1(inputs, outputs, params):
     fit = calibrate_parameter(configured_hjc(refs, cfg), "strength_scale", nose, mass, vs, depth, cfg["velocities"],
                               nose.radius, tuple(cfg["effects"]), 0.0, mesh, controls)
     write_json({"calibration": "cavity_do1", "fitted_quantity": "HJC strength_scale: factor on the whole strength "
-                "surface, the in-situ strength of the target relative to the laboratory set of Table 1 (the "
-                "counterpart of the paper's calibrated erosion strain fs: both weaken the target)",
+                "surface, a lumped factor for whatever makes the target weaker than Table 1's laboratory set in "
+                "this model (not an in-situ strength; the counterpart of the paper's calibrated erosion strain fs: "
+                "both weaken the target)",
                 "data": {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1",
                          "effects": cfg["effects"]},
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
@@ -109,10 +111,15 @@ def cavity_table(inputs, outputs, params):
         table, results = sigma_table(configured_hjc(refs, cfg, strength_scale=s), cfg["velocities"],
                                      projectile(refs, params.projectile)[1], mesh, controls)
         cost = time.perf_counter() - t0
-        stats = [None] + results
-        for v, sig, ex, r in zip(table.v, table.sigma, table.extrapolated, stats):
+        mat = configured_hjc(refs, cfg, strength_scale=s)
+        # the largest hoop stress (tension positive) in the converged field, in units of the tensile strength T
+        hoop = lambda r: float(np.max(-r.profile["p"] - 0.5 * r.profile["s_r"])) / mat.T
+        quasi = results[-2:]  # the rate-free runs behind the quasi-static v = 0 node
+        stats = [(sum(r.cycles for r in quasi), all(r.converged for r in quasi), max(hoop(r) for r in quasi))]
+        stats += [(r.cycles, r.converged, hoop(r)) for r in results[:-2]]
+        for v, sig, ex, (cycles, converged, h) in zip(table.v, table.sigma, table.extrapolated, stats, strict=True):
             rows.append({"material": label, "strength_scale": s, "velocity": v, "sigma_n": sig, "extrapolated": bool(ex),
-                         "cycles": r.cycles if r else 0, "converged": bool(r.converged) if r else False})
+                         "cycles": cycles, "converged": bool(converged), "max_hoop_over_T": h})
         print(f"{label}: table of {len(results)} velocities in {cost:.2f} s")
     write_csv(pd.DataFrame(rows), outputs.csv)
 
@@ -143,7 +150,7 @@ def scene_cavity(inputs, outputs, params):
             tr = cavity_trajectory(nose, sc.mass, v, table, effects, sc.friction, params.rtol)
             rows.append({"scene": sc.name, "nose": name, "nstar": nstar(nose), "velocity": v, "cavity_dop": tr.depth,
                          "dop_over_d": tr.depth / (2 * nose.radius), "duration": tr.duration,
-                         "peak_deceleration": float(tr.deceleration.max()),
+                         "peak_deceleration_m_s2": float(tr.deceleration.max()),
                          # largest normal stress on the nose (at impact, where the surface is steepest):
                          # beyond the projectile's yield strength the rigid-body assumption fails
                          "peak_nose_stress": float(table(v * steepest)),

@@ -46,7 +46,7 @@ def _model_rows(refs, inputs):
     do1 = pd.read_csv(inputs.do1_scene).iloc[0]
     sec = pd.read_csv(inputs.sec22)
     sec = sec[sec.radius_case == "chosen"]
-    sec22 = {(r.nose, r.velocity): {"peak": r.peak_deceleration, "dop": r.trajectory_dop, "duration": r.duration}
+    sec22 = {(r.nose, r.velocity): {"peak": r.peak_deceleration_m_s2, "dop": r.trajectory_dop, "duration": r.duration}
              for r in sec.itertuples()}
     d_do1 = 2 * cal["data"]["radius"]
     calibrated_pd = (cal["data"]["measured_depth"] + cal["residual_m"]) / d_do1
@@ -59,7 +59,8 @@ def _model_rows(refs, inputs):
                                    calibrated_pd)
             + diff_rows.cavity_rows(refs, table3, pd.read_csv(inputs.cavity_table3).to_dict("records"),
                                     float(pd.read_csv(inputs.cavity_do1).cavity_dop.iloc[0]),
-                                    load_json(inputs.cal_cavity)["strength_scale"], _erosion_fit(inputs.sensitivity)))
+                                    load_json(inputs.cal_cavity)["strength_scale"], _erosion_fit(inputs.sensitivity))
+            + diff_rows.contrast_rows(refs, pd.read_csv(inputs.contrasts).to_dict("records")))
 
 
 class _Tracking(dict):
@@ -89,7 +90,8 @@ def diff(inputs, outputs, params):
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")
     pending = sorted(set(refs) - refs.used)
-    write_text(outputs.summary, diff_rows.summary(rows, findings, pending))
+    contrasts = pd.read_csv(inputs.contrast_table).to_dict("records")
+    write_text(outputs.summary, diff_rows.summary(rows, findings, pending, contrasts))
 
 
 # --------------------------------------------------------- reproduction check

@@ -37,7 +37,7 @@ def _histories(sc, radius_case, rtol):
                                       "v": tr.v, "deceleration": tr.deceleration}))
             finals.append({"nose": name, "radius_case": radius_case, "velocity": v, "trajectory_dop": tr.depth,
                            "duration": tr.duration, "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0,
-                           "peak_deceleration": float(tr.deceleration.max())})
+                           "peak_deceleration_m_s2": float(tr.deceleration.max())})
     return rows, finals
 
 

@@ -1,0 +1,14 @@
+# The nose-shape contrasts (the paper's conclusions) gathered from every level.
+
+
+rule nose_contrasts_data:
+    input: **task("tasks.contrasts"), **GEOMETRY_RESULTS, table3="figures/table3.csv", fig15="results/scenes/fig15.csv",
+           cavity_fig15="results/scenes/cavity/fig15.csv", variants="results/cavity/calibration_variants.csv",
+           cal_do1="results/calibration/do1.json", scene="workflow/scenes/fig15.yaml", schema=SCENE_SCHEMA,
+    output: csv="results/contrasts/nose_contrasts.csv",
+    params: rtol=config["trajectory"]["rtol"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/nose_contrasts_data.tsv"
+    log: "results/logs/nose_contrasts_data.log",
+    script: "../scripts/run_task.py"
