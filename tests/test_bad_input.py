@@ -207,3 +207,16 @@ def test_override_strings_that_are_not_finite_numbers_are_refused(value):
     cfg["trajectory"] = {"rtol": value}
     with pytest.raises(ConfigError, match="trajectory.rtol"):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+@pytest.mark.parametrize("spec,where", [("cavity_gain,", "default"),
+                                         ({"default": "cavity", "columns": {"gain_m": "cavity_gain,"}}, "gain_m")])
+def test_unknown_precision_class_is_noticed_at_load(monkeypatch, spec, where):
+    """A precision class that is not defined (here a YAML block value with a stray comma) stops the run at
+    load, naming the output and column, instead of failing the reproduction check at the end."""
+    monkeypatch.chdir(ROOT)
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["check"]["outputs"]["figures/nose_contrasts.csv"] = spec
+    with pytest.raises(ConfigError, match=f"check.outputs.figures/nose_contrasts.csv.{where}: precision class "
+                                          f"'cavity_gain,' is not defined"):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")

@@ -168,4 +168,14 @@ def check_config(cfg: dict, schema_path, source: str) -> dict:
                for dotted in REFERENCE_FIELDS for value in _values(cfg, dotted) if value not in ids]
     if unknown:
         raise ConfigError("\n".join(unknown))
+    classes = cfg["check"]["precision"]
+    bad = []
+    for path, spec in cfg["check"]["outputs"].items():
+        spec = {"default": spec} if isinstance(spec, str) else spec
+        for column, name in [("default", spec.get("default"))] + list(spec.get("columns", {}).items()):
+            if name not in classes:
+                bad.append(f"{source}: check.outputs.{path}.{column}: precision class {name!r} is not defined; "
+                           f"allowed: one of {sorted(classes)}")
+    if bad:
+        raise ConfigError("\n".join(bad))
     return cfg
