@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import matplotlib
+import pandas as pd
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -25,6 +26,16 @@ def save(fig, path, dpi):
             fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format="png", metadata={"Software": None})
     finally:
         plt.close(fig)
+
+
+def ending_at_rest(hist, keys):
+    """Histories with a last point per trace (``keys``) at zero deceleration at the time of rest.
+
+    The resistance acts only while the projectile moves, so the deceleration
+    drops from its final plateau to zero when it stops.
+    """
+    rest = hist.groupby(keys, sort=False).tail(1).assign(deceleration=0.0)
+    return pd.concat([hist, rest]).sort_index(kind="stable").reset_index(drop=True)
 
 
 def color(name):

@@ -9,7 +9,7 @@ import pandas as pd
 
 from ..io import load_json, task, write_csv
 from ..units import G0
-from .common import color, figure, save
+from .common import color, ending_at_rest, figure, save
 
 LABELS = {"crh3": "CRH 3", "double_ogive": "double ogive", "crh5": "CRH 5"}
 
@@ -51,9 +51,7 @@ def panels(hist, dop, quantity, outputs, params, ylabel, title, axis_refs=None, 
 def fig08(inputs, outputs, params):
     hist = pd.read_csv(inputs.histories)
     dop = pd.read_csv(inputs.dop)
-    # at rest the resistance vanishes: each trace ends with a point at zero at the time of rest
-    rest = hist.groupby(["nose", "radius_case", "velocity"], sort=False).tail(1).assign(deceleration=0.0)
-    hist = pd.concat([hist, rest]).sort_index(kind="stable").reset_index(drop=True)
+    hist = ending_at_rest(hist, ["nose", "radius_case", "velocity"])
     hist["deceleration_g"] = hist.deceleration / G0
     write_csv(hist[["nose", "radius_case", "velocity", "t", "deceleration_g"]], outputs.csv)
     panels(hist, dop, "deceleration_g", outputs, params, "deceleration (g)", "Fig 8", legend_loc="lower center",

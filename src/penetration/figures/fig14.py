@@ -15,7 +15,7 @@ import pandas as pd
 from ..io import task, write_csv
 from ..reference import load_reference
 from ..units import G0
-from .common import color, figure, save
+from .common import color, ending_at_rest, figure, save
 
 LABELS = {"crh3": "CRH 3", "crh45": "CRH 4.5", "double_ogive": "double ogive"}
 
@@ -24,8 +24,7 @@ LABELS = {"crh3": "CRH 3", "crh45": "CRH 4.5", "double_ogive": "double ogive"}
 def fig14(inputs, outputs, params):
     hist = pd.read_csv(inputs.histories)
     refs = load_reference(inputs.reference)
-    rest = hist.groupby(["nose", "velocity"], sort=False).tail(1).assign(deceleration=0.0)  # at rest: no resistance
-    hist = pd.concat([hist, rest]).sort_index(kind="stable")
+    hist = ending_at_rest(hist, ["nose", "velocity"])
     data = hist.assign(t_ms=hist.t * 1e3, deceleration_g=hist.deceleration / G0, filter="none")[
         ["nose", "velocity", "t_ms", "deceleration_g", "filter"]]
     write_csv(data, outputs.csv)

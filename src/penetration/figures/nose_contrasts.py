@@ -20,21 +20,18 @@ def wide_table(data):
     """One row per (contrast, velocity) at Table 3's velocities: each source's ratio and gain, the variants' range."""
     t3 = data[data.source == "table3"]
     out = t3[["contrast", "velocity"]].drop_duplicates().reset_index(drop=True)
-    keyed = lambda g: g.set_index(["contrast", "velocity"])
-    for name, level, variant in (("paper_sim", "paper", "simulation (LS-DYNA, fs calibrated on DO1)"),
-                                 ("paper_calc", "paper", "calculation (Eq 9)"),
-                                 ("analytic", "analytic", "Eq 9, S calibrated on DO1"),
-                                 ("analytic_stated_S", "analytic", "Eq 9, S = 72 fc^-0.5"),
-                                 ("cavity", "cavity", "strength scale calibrated on DO1")):
-        g = keyed(t3[(t3.level == level) & (t3.variant == variant)])
-        idx = pd.MultiIndex.from_frame(out[["contrast", "velocity"]])
+    idx = pd.MultiIndex.from_frame(out[["contrast", "velocity"]])
+    sources = [(name, t3[(t3.level == level) & (t3.variant == variant)])
+               for name, level, variant in (("paper_sim", "paper", "simulation (LS-DYNA, fs calibrated on DO1)"),
+                                            ("paper_calc", "paper", "calculation (Eq 9)"),
+                                            ("analytic", "analytic", "Eq 9, S calibrated on DO1"),
+                                            ("analytic_stated_S", "analytic", "Eq 9, S = 72 fc^-0.5"),
+                                            ("cavity", "cavity", "strength scale calibrated on DO1"))]
+    sources.append(("trajectory", data[(data.source == "fig15") & (data.level == "trajectory")]))
+    for name, rows in sources:
+        g = rows.set_index(["contrast", "velocity"])
         out[f"{name}_ratio"] = g.ratio.reindex(idx).to_numpy()
         out[f"{name}_gain_m"] = g.gain_m.reindex(idx).to_numpy()
-    fig15 = data[(data.source == "fig15") & (data.level == "trajectory")]
-    g = keyed(fig15)
-    idx = pd.MultiIndex.from_frame(out[["contrast", "velocity"]])
-    out["trajectory_ratio"] = g.ratio.reindex(idx).to_numpy()
-    out["trajectory_gain_m"] = g.gain_m.reindex(idx).to_numpy()
     var = t3[t3.level == "cavity variant"].groupby(["contrast", "velocity"])
     for stat in ("min", "max"):
         out[f"cavity_variants_{stat}_ratio"] = var.ratio.agg(stat).reindex(idx).to_numpy()
