@@ -257,7 +257,7 @@ def strength(p, D, rate, q):
     r = rate / q[I_EPS0]
     if q[I_RATEFLOOR] > 0.5:
         r = max(r, 1.0)
-    factor = 1.0 + q[I_C] * math.log(r) if r > 0.0 else 1.0  # C = 0 switches the rate term off
+    factor = 1.0 + q[I_C] * math.log(r) if (r > 0.0 and r != 1.0) else 1.0  # C = 0 switches the rate term off
     ps = p / fc
     if ps >= 0.0:
         s = q[I_A] * (1.0 - D) + q[I_B] * ps ** q[I_N]
@@ -306,15 +306,20 @@ def update_point(s, mu, mu_max, mu_p, D, eps_p, deps, rate, q):
     p = cutoff(p, D, q)
     j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5]
     seq = math.sqrt(3.0 * j2)
-    sy = yield_stress(p, D, eps_p, rate, q)
     dep = 0.0
-    if seq > sy:
-        scale = sy / seq if seq > 0.0 else 0.0
-        for i in range(6):
-            s[i] *= scale
-        dep = (seq - sy) / (3.0 * G)
+    # the surface is only evaluated above a lower bound of it (same result, fewer powers and logarithms):
+    # with a rate factor >= 1 and p >= 0, sigma_y >= scale fc min(A (1 - D), Smax)
+    below = (p >= 0.0 and eps_p < q[I_EROSION] and (q[I_RATEFLOOR] > 0.5 or q[I_C] == 0.0)
+             and seq <= q[I_SCALE] * q[I_FC] * min(q[I_A] * (1.0 - D), q[I_SMAX]))
+    if not below:
+        sy = yield_stress(p, D, eps_p, rate, q)
+        if seq > sy:
+            scale = sy / seq if seq > 0.0 else 0.0
+            for i in range(6):
+                s[i] *= scale
+            dep = (seq - sy) / (3.0 * G)
     dmu_p = max(mu_p_new - mu_p, 0.0)
-    if q[I_DAMAGE] > 0.5:
+    if q[I_DAMAGE] > 0.5 and dep + dmu_p > 0.0:
         D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q))
     p = cutoff(p, D, q)
     return p, mu_max, mu_p_new, D, dep

@@ -1,0 +1,457 @@
+"""Compiled kernels of the axisymmetric explicit solver (structure-of-arrays, numba).
+
+Formulation (Galerkin, volume-weighted, one-point integration at the element
+centre): B-matrix b_r = dN/dr, b_z = dN/dz of the bilinear quad at its centre,
+hoop row N/r = 1/sum(r_I); element volume V = 2 pi rbar A with rbar = sum(r_I)/4;
+internal force f_I = V B_I^T sigma, whose power equals V sigma:D exactly, so
+the energy audit has no formulation error and the axial momentum is conserved
+to round-off (sum_I b_I = 0). Lumped masses m_I = sum of m_e/4.
+
+One step (central differences): v^{n+1/2} = v^{n-1/2} + dt a^n; kinematic contact
+corrects v^{n+1/2}; x^{n+1} = x^n + dt v^{n+1/2}; strain rate and spin from the
+half-step geometry; the deviatoric stress is rotated (Jaumann, exact in-plane
+rotation by the spin angle) then updated by the material; forces at x^{n+1}.
+
+Hourglass: Flanagan-Belytschko viscous form; the hourglass shape vector is
+orthogonal to every linear velocity field (patch test) and the coefficient
+QH rho c V/sqrt(A) uses the bulk wave speed, so it stays active where the
+material has lost its shear strength. Bulk viscosity q = rho l (Q1^2 l e_v^2 -
+Q2 c e_v) in compression, l = sqrt(A).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from ..hjc import I_G, I_K1, I_K2, I_K3, I_MUCRUSH, I_MULOCK, unloading_modulus, update_point
+from .materials import HJC_KIND
+
+# element fields (rows of E)
+SRR, SZZ, STT, SRZ, P, QV, MUMAX, MUP, DMG, EPSP, EPSEFF, IE, V0, MASS, CS = range(15)
+N_FIELDS = 15
+# controls (ctl)
+C_DT, C_QH, C_Q1, C_Q2, C_EROSION, C_EROSION_VALUE, C_GUARD, C_DTMIN = range(8)
+N_CTL = 8
+EROSION_KINDS = {"none": 0, "plastic_strain": 1, "effective_strain": 2, "volumetric_tension": 3, "damage": 4}
+BOUNDARIES = {"free": 0, "roller": 1, "non_reflecting": 2}
+# failure codes
+OK, NON_FINITE, INVERTED, DT_COLLAPSE = 0, 1, 2, 3
+FAILURES = {NON_FINITE: "non-finite stress or geometry", INVERTED: "inverted element (a corner Jacobian <= 0)",
+            DT_COLLAPSE: "element time step below the floor"}
+TWO_PI = 2.0 * math.pi
+# fast-math flags that keep NaN and infinity semantics (the failure checks rely on them)
+FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _wave_speed(kind, q, mu, mumax, rho):
+    """Longitudinal (loading or unloading, whichever is stiffer) wave speed."""
+    if kind == HJC_KIND:
+        K = unloading_modulus(mumax, q)
+        if mu > q[I_MUCRUSH]:
+            mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
+            K = max(K, q[I_K1] + 2.0 * q[I_K2] * mb + 3.0 * q[I_K3] * mb * mb)
+        G = q[I_G]
+    else:
+        K = q[2]
+        G = q[1]
+    return math.sqrt((K + 4.0 * G / 3.0) / rho)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio):
+    """Elastic / von Mises update of the deviatoric stress and pressure p = K ln(V0/V); returns d eps_p."""
+    G, K = q[1], q[2]
+    tr = (de0 + de1 + de2) / 3.0
+    E[SRR, e] += 2.0 * G * (de0 - tr)
+    E[SZZ, e] += 2.0 * G * (de1 - tr)
+    E[STT, e] += 2.0 * G * (de2 - tr)
+    E[SRZ, e] += 2.0 * G * de3
+    E[P, e] = K * math.log(mu_ratio)
+    if kind == 0:
+        return 0.0
+    s0, s1, s2, s3 = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
+    seq = math.sqrt(1.5 * (s0 * s0 + s1 * s1 + s2 * s2) + 3.0 * s3 * s3)
+    sy = q[3] + q[4] * E[EPSP, e]
+    if seq <= sy:
+        return 0.0
+    dep = (seq - sy) / (3.0 * G + q[4])
+    scale = (sy + q[4] * dep) / seq
+    E[SRR, e] = s0 * scale
+    E[SZZ, e] = s1 * scale
+    E[STT, e] = s2 * scale
+    E[SRZ, e] = s3 * scale
+    return dep
+
+
+@njit(parallel=True, cache=True, error_model="numpy", fastmath=FAST)
+def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail):
+    """Strain rates, stress update, internal energy, forces, hourglass, stable time step and erosion, per row.
+
+    alive: 1 live, 0 eroded; an element that erodes in this pass is set to 2.
+    Per row j: rowdt[j] the smallest stable step, rowhg[j] the hourglass work,
+    rowero[j] the internal energy of the elements eroded, rowfail[j] = the
+    element index of a failure (-1 none) with its code in rowfail[nz + j].
+    """
+    dt = ctl[C_DT]
+    qh, q1, q2 = ctl[C_QH], ctl[C_Q1], ctl[C_Q2]
+    erosion, ev, guard, dtmin = int(ctl[C_EROSION]), ctl[C_EROSION_VALUE], ctl[C_GUARD] > 0.5, ctl[C_DTMIN]
+    for j in prange(nz):
+        s6 = np.zeros(6)
+        d6 = np.zeros(6)
+        dt_row, hg_row, ero_row, fail, code = 1e30, 0.0, 0.0, -1, 0
+        for i in range(nr):
+            e = j * nr + i
+            if alive[e] != 1:
+                continue
+            n1 = j * (nr + 1) + i
+            n2 = n1 + 1
+            n4 = n1 + nr + 1
+            n3 = n4 + 1
+            u1, u2, u3, u4 = vr[n1], vr[n2], vr[n3], vr[n4]
+            w1, w2, w3, w4 = vz[n1], vz[n2], vz[n3], vz[n4]
+            r1, r2, r3, r4 = r[n1], r[n2], r[n3], r[n4]
+            z1, z2, z3, z4 = z[n1], z[n2], z[n3], z[n4]
+            # ---- half-step geometry: strain rate and spin
+            h = 0.5 * dt
+            R1, R2, R3, R4 = r1 - h * u1, r2 - h * u2, r3 - h * u3, r4 - h * u4
+            Z1, Z2, Z3, Z4 = z1 - h * w1, z2 - h * w2, z3 - h * w3, z4 - h * w4
+            A2h = (R3 - R1) * (Z4 - Z2) + (R2 - R4) * (Z3 - Z1)
+            srh = R1 + R2 + R3 + R4
+            # ---- new geometry
+            A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
+            sr = r1 + r2 + r3 + r4
+            c1 = (r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1)
+            c2 = (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2)
+            c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
+            c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
+            cmin = min(min(c1, c2), min(c3, c4))
+            if not (A2h > 0.0 and A2 > 0.0 and cmin > 0.0 and sr > 0.0):
+                if guard:
+                    alive[e] = 2
+                    ero_row += E[IE, e]
+                    continue
+                if fail < 0:
+                    fail, code = e, INVERTED
+                continue
+            ih = 1.0 / A2h
+            br1, br2 = (Z2 - Z4) * ih, (Z3 - Z1) * ih
+            bz1, bz2 = (R4 - R2) * ih, (R1 - R3) * ih
+            drr = br1 * (u1 - u3) + br2 * (u2 - u4)
+            dzz = bz1 * (w1 - w3) + bz2 * (w2 - w4)
+            dvr_dz = bz1 * (u1 - u3) + bz2 * (u2 - u4)
+            dvz_dr = br1 * (w1 - w3) + br2 * (w2 - w4)
+            dtt = (u1 + u2 + u3 + u4) / srh if srh > 0.0 else drr
+            drz = 0.5 * (dvr_dz + dvz_dr)
+            spin = 0.5 * (dvr_dz - dvz_dr)
+            tv = drr + dzz + dtt
+            Vh = TWO_PI * 0.25 * srh * 0.5 * A2h
+            A = 0.5 * A2
+            V = TWO_PI * 0.25 * sr * A
+            # ---- rotate the deviatoric stress by the spin angle (Jaumann)
+            so0, so1, so2, so3, po = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]
+            th = spin * dt  # Cayley (Hughes-Winget) rotation: orthogonal, angle 2 atan(th) = 2 th + O(th^3)
+            den = 1.0 / (1.0 + th * th)
+            cs, sn = (1.0 - th * th) * den, 2.0 * th * den
+            am, dm = 0.5 * (so0 + so1), 0.5 * (so0 - so1)
+            dn = dm * cs + so3 * sn
+            E[SRZ, e] = so3 * cs - dm * sn
+            E[SRR, e] = am + dn
+            E[SZZ, e] = am - dn
+            # ---- material
+            de0, de1, de2, de3 = drr * dt, dzz * dt, dtt * dt, drz * dt
+            dev0, dev1, dev2 = drr - tv / 3.0, dzz - tv / 3.0, dtt - tv / 3.0
+            rate = math.sqrt(2.0 / 3.0 * (dev0 * dev0 + dev1 * dev1 + dev2 * dev2 + 2.0 * drz * drz))
+            mu_ratio = E[V0, e] / V
+            if kind == HJC_KIND:
+                s6[0], s6[1], s6[2], s6[3] = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
+                s6[4] = 0.0
+                s6[5] = 0.0
+                d6[0], d6[1], d6[2], d6[3] = de0, de1, de2, de3
+                pn, mumax, mup, dmg, dep = update_point(s6, mu_ratio - 1.0, E[MUMAX, e], E[MUP, e], E[DMG, e],
+                                                        E[EPSP, e], d6, rate, q)
+                E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e] = s6[0], s6[1], s6[2], s6[3]
+                E[P, e], E[MUMAX, e], E[MUP, e], E[DMG, e] = pn, mumax, mup, dmg
+            else:
+                dep = _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio)
+            E[EPSP, e] += dep
+            E[EPSEFF, e] += rate * dt
+            rho = q[0] * mu_ratio
+            c = _wave_speed(kind, q, mu_ratio - 1.0, E[MUMAX, e], rho)
+            E[CS, e] = c
+            # one length for viscosity, hourglass and time step: area over the longest side
+            s12 = (r2 - r1) ** 2 + (z2 - z1) ** 2
+            s23 = (r3 - r2) ** 2 + (z3 - z2) ** 2
+            s34 = (r4 - r3) ** 2 + (z4 - z3) ** 2
+            s41 = (r1 - r4) ** 2 + (z1 - z4) ** 2
+            side = math.sqrt(max(max(s12, s23), max(s34, s41)))
+            ia = 1.0 / A2
+            lc = A / side
+            qv = rho * lc * (q1 * q1 * lc * tv * tv - q2 * c * tv) if tv < 0.0 else 0.0
+            # ---- internal energy (mid-point rule) incl. the viscous work
+            pn = E[P, e]
+            sn0, sn1, sn2, sn3 = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
+            E[IE, e] += Vh * (0.5 * ((so0 - po + sn0 - pn) * de0 + (so1 - po + sn1 - pn) * de1
+                                      + (so2 - po + sn2 - pn) * de2) + (so3 + sn3) * de3 - qv * tv * dt)
+            E[QV, e] = qv
+            # ---- forces at the new geometry
+            b1r, b2r = (z2 - z4) * ia, (z3 - z1) * ia
+            b1z, b2z = (r4 - r2) * ia, (r1 - r3) * ia
+            srr = sn0 - pn - qv
+            szz = sn1 - pn - qv
+            stt = sn2 - pn - qv
+            hoop = 0.5 * math.pi * A * stt  # V sigma_tt / sum(r_I) = 2 pi A sigma_tt / 4
+            F[0, e] = V * (b1r * srr + b1z * sn3) + hoop
+            F[1, e] = V * (b1z * szz + b1r * sn3)
+            F[2, e] = V * (b2r * srr + b2z * sn3) + hoop
+            F[3, e] = V * (b2z * szz + b2r * sn3)
+            F[4, e] = -V * (b1r * srr + b1z * sn3) + hoop
+            F[5, e] = -V * (b1z * szz + b1r * sn3)
+            F[6, e] = -V * (b2r * srr + b2z * sn3) + hoop
+            F[7, e] = -V * (b2z * szz + b2r * sn3)
+            # ---- hourglass (Flanagan-Belytschko, viscous)
+            if qh > 0.0:
+                hr = r1 - r2 + r3 - r4
+                hz = z1 - z2 + z3 - z4
+                g1 = 0.25 * (1.0 - hr * b1r - hz * b1z)
+                g2 = 0.25 * (-1.0 - hr * b2r - hz * b2z)
+                g3 = 0.25 * (1.0 + hr * b1r + hz * b1z)
+                g4 = 0.25 * (-1.0 + hr * b2r + hz * b2z)
+                qr = g1 * u1 + g2 * u2 + g3 * u3 + g4 * u4
+                qz = g1 * w1 + g2 * w2 + g3 * w3 + g4 * w4
+                kap = qh * E[MASS, e] * c / lc
+                F[0, e] += kap * g1 * qr
+                F[1, e] += kap * g1 * qz
+                F[2, e] += kap * g2 * qr
+                F[3, e] += kap * g2 * qz
+                F[4, e] += kap * g3 * qr
+                F[5, e] += kap * g3 * qz
+                F[6, e] += kap * g4 * qr
+                F[7, e] += kap * g4 * qz
+                hg_row += kap * (qr * qr + qz * qz) * dt
+            # ---- stable time step
+            if tv < 0.0:
+                Q = q2 * c + q1 * q1 * lc * abs(tv)
+                dte = lc / (Q + math.sqrt(Q * Q + c * c))
+            else:
+                dte = lc / c
+            if not (math.isfinite(dte) and math.isfinite(E[IE, e]) and math.isfinite(pn) and math.isfinite(sn0)):
+                if fail < 0:
+                    fail, code = e, NON_FINITE
+                continue
+            # ---- erosion and guards
+            gone = False
+            if erosion == 1:
+                gone = E[EPSP, e] >= ev
+            elif erosion == 2:
+                gone = E[EPSEFF, e] >= ev
+            elif erosion == 3:
+                gone = 1.0 / mu_ratio - 1.0 >= ev
+            elif erosion == 4:
+                gone = E[DMG, e] >= ev
+            if dte < dtmin:
+                if guard:
+                    gone = True
+                elif fail < 0:
+                    fail, code = e, DT_COLLAPSE
+            if gone:
+                alive[e] = 2
+                ero_row += E[IE, e]
+                continue
+            dt_row = min(dt_row, dte)
+        rowdt[j] = dt_row
+        rowhg[j] = hg_row
+        rowero[j] = ero_row
+        rowfail[j] = fail
+        rowfail[nz + j] = code
+
+
+@njit(parallel=True, cache=True)
+def node_pass(nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd):
+    """Gather element forces (internal + hourglass), add boundary dashpots, update velocities by dtv.
+
+    fix[n]: 1 holds v_r = 0 (axis, roller), 2 holds v_z = 0, 3 both. dash[:, n]
+    = (area, n_r, n_z): a non-reflecting (Lysmer) dashpot on the node's share
+    of the boundary, traction -rho c_p v_n n - rho c_s v_t. rowbnd[0, j]: power
+    absorbed, rowbnd[1, j]: axial force of the dashpots, per node row. vr0, vz0
+    receive the velocities before the update (for the contact's work).
+    """
+    for j in prange(nz + 1):
+        pw = 0.0
+        fb = 0.0
+        for i in range(nr + 1):
+            n = j * (nr + 1) + i
+            if nstate[n] == 2:
+                continue
+            fr = 0.0
+            fz = 0.0
+            if i < nr and j < nz:
+                e = j * nr + i
+                if alive[e] == 1:
+                    fr += F[0, e]
+                    fz += F[1, e]
+            if i > 0 and j < nz:
+                e = j * nr + i - 1
+                if alive[e] == 1:
+                    fr += F[2, e]
+                    fz += F[3, e]
+            if i > 0 and j > 0:
+                e = (j - 1) * nr + i - 1
+                if alive[e] == 1:
+                    fr += F[4, e]
+                    fz += F[5, e]
+            if i < nr and j > 0:
+                e = (j - 1) * nr + i
+                if alive[e] == 1:
+                    fr += F[6, e]
+                    fz += F[7, e]
+            ur, uz = vr[n], vz[n]
+            vr0[n] = ur
+            vz0[n] = uz
+            da = dash[0, n]
+            if da > 0.0:
+                nr_, nz_ = dash[1, n], dash[2, n]
+                vn = ur * nr_ + uz * nz_
+                er = -da * (zp * vn * nr_ + zs * (ur - vn * nr_))
+                ez = -da * (zp * vn * nz_ + zs * (uz - vn * nz_))
+                pw -= er * ur + ez * uz
+                fb += ez
+                fr -= er
+                fz -= ez
+            m = mass[n]
+            ur -= dtv * fr / m
+            uz -= dtv * fz / m
+            fx = fix[n]
+            if fx & 1:
+                ur = 0.0
+            if fx & 2:
+                uz = 0.0
+            vr[n] = ur
+            vz[n] = uz
+        rowbnd[0, j] = pw
+        rowbnd[1, j] = fb
+
+
+@njit(parallel=True, cache=True)
+def move(r, z, vr, vz, nstate, dt):
+    for n in prange(r.size):
+        if nstate[n] != 2:
+            r[n] += dt * vr[n]
+            z[n] += dt * vz[n]
+
+
+@njit(cache=True)
+def contact(r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, dt, Zt, V, V0, M, zeta, rho, rho_max, mu_f, buf_i, buf):
+    """Kinematic contact of the target nodes with the rigid projectile (tip at z = Zt, moving +z at V).
+
+    Nodes whose predicted positions lie inside the body are moved onto its
+    surface (closest point of the outline; along the axis for nodes on it)
+    by normal impulses lam_I >= 0 shared with the projectile: the exact
+    solution of the rank-one system lam_I/m_I + n_zI S/M = g_I/dt,
+    S = sum lam_J n_zJ (an active set drops nodes that would pull).
+    Optional Coulomb friction (mu_f) stops the tangential slip up to mu_f lam.
+
+    Work of the contact (returned as the energy it removes): each impulse
+    times the mean of the half-step velocities before the step (vr0, vz0, V0)
+    and after the contact, which is what the leapfrog kinetic energy sees.
+
+    Returns (new V, normal impulse S on the projectile incl. friction, energy removed,
+    number of nodes in contact, largest nodal normal force).
+    """
+    Zp = Zt + dt * V
+    Lb = zeta[-1]
+    K = zeta.size
+    m_act = 0
+    for n in range(r.size):
+        if nstate[n] == 2:
+            continue
+        rp = r[n] + dt * vr[n]
+        if rp >= rho_max:
+            continue
+        zp = z[n] + dt * vz[n]
+        ze = Zp - zp
+        if ze <= 0.0 or ze >= Lb:
+            continue
+        if on_axis[n]:
+            g, nrm_r, nrm_z = ze, 0.0, 1.0
+        else:
+            k = np.searchsorted(zeta, ze, side="right") - 1
+            if k >= K - 1:
+                k = K - 2
+            rs = rho[k] + (rho[k + 1] - rho[k]) * (ze - zeta[k]) / (zeta[k + 1] - zeta[k])
+            if rp >= rs:
+                continue
+            dh = rs - rp
+            best, pr, pz = dh, rs, ze
+            kk = k
+            while kk >= 0 and zeta[kk + 1] >= ze - best:
+                kk -= 1
+            kk = max(kk, 0)
+            while kk < K - 1 and zeta[kk] <= ze + best:
+                ar, az = rho[kk], zeta[kk]
+                tr, tz = rho[kk + 1] - ar, zeta[kk + 1] - az
+                L2 = tr * tr + tz * tz
+                t = ((rp - ar) * tr + (ze - az) * tz) / L2 if L2 > 0.0 else 0.0
+                t = min(max(t, 0.0), 1.0)
+                cr, cz = ar + t * tr, az + t * tz
+                d = math.sqrt((cr - rp) ** 2 + (cz - ze) ** 2)
+                if d < best:
+                    best, pr, pz = d, cr, cz
+                kk += 1
+            g = best
+            if g <= 0.0:
+                continue
+            nrm_r, nrm_z = (pr - rp) / g, -(pz - ze) / g
+        buf_i[m_act] = n
+        buf[0, m_act] = g
+        buf[1, m_act] = nrm_r
+        buf[2, m_act] = nrm_z
+        buf[3, m_act] = 1.0
+        m_act += 1
+    if m_act == 0:
+        return V, 0.0, 0.0, 0, 0.0
+    S = 0.0
+    for it in range(50):
+        num, den = 0.0, 1.0
+        for a in range(m_act):
+            if buf[3, a] > 0.0:
+                m = mass[buf_i[a]]
+                num += m * buf[0, a] * buf[2, a] / dt
+                den += m * buf[2, a] * buf[2, a] / M
+        S = num / den
+        changed = False
+        for a in range(m_act):
+            if buf[3, a] > 0.0:
+                lam = mass[buf_i[a]] * (buf[0, a] / dt - buf[2, a] * S / M)
+                if lam < 0.0:
+                    buf[3, a] = 0.0
+                    changed = True
+        if not changed:
+            break
+    V1 = V - S / M
+    fmax = 0.0
+    Sf = 0.0
+    work = 0.0
+    for a in range(m_act):
+        n = buf_i[a]
+        m = mass[n]
+        ur, uz = vr[n], vz[n]
+        if buf[3, a] > 0.0:
+            lam = m * (buf[0, a] / dt - buf[2, a] * S / M)
+            fmax = max(fmax, lam / dt)
+            vr[n] += lam * buf[1, a] / m
+            vz[n] += lam * buf[2, a] / m
+            if mu_f > 0.0:
+                tr, tz = -buf[2, a], buf[1, a]
+                vt = vr[n] * tr + (vz[n] - V1) * tz
+                jt = min(m * abs(vt), mu_f * lam)
+                sg = 1.0 if vt > 0.0 else -1.0
+                vr[n] -= sg * jt * tr / m
+                vz[n] -= sg * jt * tz / m
+                Sf -= sg * jt * tz
+        work += m * ((vr[n] - ur) * 0.5 * (vr0[n] + vr[n]) + (vz[n] - uz) * 0.5 * (vz0[n] + vz[n]))
+    V1 -= Sf / M
+    work += M * (V1 - V) * 0.5 * (V0 + V1)
+    return V1, S + Sf, -work, m_act, fmax

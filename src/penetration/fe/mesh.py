@@ -1,0 +1,142 @@
+"""Structured axisymmetric meshes of the target and the rigid projectile's outline.
+
+The target is a cylinder r in [r0, radius], z in [0, depth] (z grows into the
+target, the struck face is z = 0). Logical grid: node (i, j) has index
+j (nr + 1) + i, element (i, j) has index j nr + i and nodes (i, j), (i+1, j),
+(i+1, j+1), (i, j+1), counter-clockwise in the (r, z) plane. A uniform core
+of square elements of size h surrounds the path (r <= core_radius,
+z <= core_depth); outside it the sizes grow geometrically by ``grading``.
+With ``pilot_hole`` > 0 the target starts at r0 = pilot_hole (a hole along
+the axis; no axis nodes).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..geometry import ParameterError
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    element_size: float
+    core_radius: float
+    core_depth: float
+    radius: float
+    depth: float
+    grading: float = 1.1
+    pilot_hole: float = 0.0
+
+    def __post_init__(self):
+        for key in ("element_size", "core_radius", "core_depth", "radius", "depth"):
+            v = getattr(self, key)
+            if not (math.isfinite(v) and v > 0):
+                raise ParameterError("mesh", key, v, f"{key} > 0 (m)")
+        if not 1.0 <= self.grading <= 1.5:
+            raise ParameterError("mesh", "grading", self.grading, "1 <= grading <= 1.5 (size ratio of neighbours)")
+        if not 0.0 <= self.pilot_hole < self.core_radius:
+            raise ParameterError("mesh", "pilot_hole", self.pilot_hole, f"0 <= pilot_hole < core_radius = {self.core_radius} m")
+        if self.element_size > min(self.core_radius - self.pilot_hole, self.core_depth):
+            raise ParameterError("mesh", "element_size", self.element_size,
+                                 "element_size <= core_radius - pilot_hole and <= core_depth")
+        cells = ((self.radius - self.pilot_hole) / self.element_size) * (self.depth / self.element_size)
+        if cells > 5e7:
+            raise ParameterError("mesh", "element_size", self.element_size, "a size giving at most 5e7 elements")
+
+
+def graded(x0, core, extent, h, ratio):
+    """Node coordinates from x0: uniform cells of size h up to >= core, then growing by ``ratio`` up to extent."""
+    n_core = max(1, int(math.ceil((min(core, extent) - x0) / h - 1e-9)))
+    x = list(x0 + h * np.arange(n_core + 1))
+    if x[-1] >= extent - 1e-12 * extent:
+        x[-1] = extent
+        return np.array(x)
+    size, grown = h, []
+    while sum(grown) < extent - x[-1]:
+        size *= ratio
+        grown.append(size)
+    grown = np.array(grown) * (extent - x[-1]) / sum(grown)  # last cells scaled to end exactly at extent
+    return np.concatenate([x, x[-1] + np.cumsum(grown)])
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Nodes of a logically rectangular mesh: R[j, i], Z[j, i] for node (i, j).
+
+    Elements (i, j) are counter-clockwise in (r, z) when R grows with i and Z
+    with j (a rectangle) or for the polar grid of ``polar``.
+    """
+    R: np.ndarray
+    Z: np.ndarray
+
+    @classmethod
+    def tensor(cls, r, z):
+        R, Z = np.meshgrid(np.asarray(r, float), np.asarray(z, float))
+        return cls(R, Z)
+
+    @property
+    def nr(self):
+        return self.R.shape[1] - 1
+
+    @property
+    def nz(self):
+        return self.R.shape[0] - 1
+
+    @property
+    def r(self):
+        return self.R[0]
+
+    @property
+    def z(self):
+        return self.Z[:, 0]
+
+    @property
+    def elements(self):
+        return self.nr * self.nz
+
+    def nodes(self):
+        """Flattened node coordinates (r, z), node (i, j) at j (nr + 1) + i."""
+        return self.R.ravel().copy(), self.Z.ravel().copy()
+
+    def connectivity(self):
+        """Element -> its four node indices (counter-clockwise), for plotting and checks."""
+        i, j = np.meshgrid(np.arange(self.nr), np.arange(self.nz))
+        n1 = (j * (self.nr + 1) + i).ravel()
+        return np.stack([n1, n1 + 1, n1 + self.nr + 2, n1 + self.nr + 1], axis=1)
+
+
+def polar(radii, n_theta):
+    """Half-annulus about the origin for spherical problems: radii[i] along the ray, theta = pi j/n_theta from +z.
+
+    Node (i, j) at r = radii[i] sin(theta_j), z = -radii[i] cos(theta_j) (counter-clockwise elements);
+    the rows j = 0 and j = n_theta lie on the axis.
+    """
+    th = np.linspace(0.0, np.pi, n_theta + 1)
+    rad = np.asarray(radii, float)
+    R = np.outer(np.sin(th), rad)
+    R[0] = 0.0
+    R[-1] = 0.0
+    return Grid(R, -np.outer(np.cos(th), rad))
+
+
+def build(spec: MeshSpec) -> Grid:
+    return Grid.tensor(graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading),
+                graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
+
+
+def body_outline(nose, body_length, points_per_segment=400):
+    """Outline of the rigid projectile in body axes: (zeta, rho), zeta from the tip backwards, rho the radius.
+
+    The nose outline (``nose.outline``) is followed by the shank up to
+    ``body_length``; zeta never decreases along the outline (a flat face is a
+    vertical piece at zeta = 0).
+    """
+    if not body_length > nose.length:
+        raise ParameterError("fe projectile", "length", body_length, f"length > nose length {nose.length} m")
+    x, y = nose.outline(points_per_segment)
+    keep = np.concatenate(([True], (np.diff(x) != 0) | (np.diff(y) != 0)))
+    x, y = x[keep], y[keep]
+    x = np.maximum.accumulate(x)
+    return np.append(x, body_length), np.append(y, nose.radius)
