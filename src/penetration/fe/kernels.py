@@ -1,11 +1,15 @@
 """Compiled kernels of the axisymmetric explicit solver (structure-of-arrays, numba).
 
-Formulation (Galerkin, volume-weighted, one-point integration at the element
-centre): B-matrix b_r = dN/dr, b_z = dN/dz of the bilinear quad at its centre,
-hoop row N/r = 1/sum(r_I); element volume V = 2 pi rbar A with rbar = sum(r_I)/4;
-internal force f_I = V B_I^T sigma, whose power equals V sigma:D exactly, so
-the energy audit has no formulation error and the axial momentum is conserved
-to round-off (sum_I b_I = 0). Lumped masses m_I = sum of m_e/4.
+Formulation (volume-weighted, one-point integration at the element centre):
+b_r = dN/dr, b_z = dN/dz of the bilinear quad at its centre; the element
+volume is exact, V = 2 pi W with W the integral of r dA over the quad; the hoop
+row is (dW/dr_I - W b_rI)/W, so that a field v_r = alpha r gives D_tt = alpha
+exactly and a uniform stress with sigma_rr = sigma_tt leaves no residual at
+interior nodes of a distorted mesh (with the mean nodal radius in place of W/A
+it leaves a few per cent). Internal force f_I = V B_I^T sigma, whose power is
+V sigma:D exactly, so the energy audit has no formulation error; the axial
+momentum is conserved to round-off (sum_I b_I = 0). Lumped masses m_I = sum of
+m_e/4.
 
 One step (central differences): v^{n+1/2} = v^{n-1/2} + dt a^n; kinematic contact
 corrects v^{n+1/2}; x^{n+1} = x^n + dt v^{n+1/2}; strain rate and spin from the
@@ -43,6 +47,21 @@ FAILURES = {NON_FINITE: "non-finite stress or geometry", INVERTED: "inverted ele
 TWO_PI = 2.0 * math.pi
 # fast-math flags that keep NaN and infinity semantics (the failure checks rely on them)
 FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
+
+
+@njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
+def _moment(r1, r2, r3, r4, z1, z2, z3, z4):
+    """W = integral of r dA over the quad (V = 2 pi W) and dW/dr_I (W is quadratic in r, linear in z)."""
+    c12 = r1 * z2 - r2 * z1
+    c23 = r2 * z3 - r3 * z2
+    c34 = r3 * z4 - r4 * z3
+    c41 = r4 * z1 - r1 * z4
+    W = ((r1 + r2) * c12 + (r2 + r3) * c23 + (r3 + r4) * c34 + (r4 + r1) * c41) / 6.0
+    w1 = (c41 + c12 + (r4 + r1) * (-z4) + (r1 + r2) * z2) / 6.0
+    w2 = (c12 + c23 + (r1 + r2) * (-z1) + (r2 + r3) * z3) / 6.0
+    w3 = (c23 + c34 + (r2 + r3) * (-z2) + (r3 + r4) * z4) / 6.0
+    w4 = (c34 + c41 + (r3 + r4) * (-z3) + (r4 + r1) * z1) / 6.0
+    return W, w1, w2, w3, w4
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -119,7 +138,6 @@ def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, 
             R1, R2, R3, R4 = r1 - h * u1, r2 - h * u2, r3 - h * u3, r4 - h * u4
             Z1, Z2, Z3, Z4 = z1 - h * w1, z2 - h * w2, z3 - h * w3, z4 - h * w4
             A2h = (R3 - R1) * (Z4 - Z2) + (R2 - R4) * (Z3 - Z1)
-            srh = R1 + R2 + R3 + R4
             # ---- new geometry
             A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
             sr = r1 + r2 + r3 + r4
@@ -128,7 +146,7 @@ def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, 
             c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
             c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
             cmin = min(min(c1, c2), min(c3, c4))
-            if not (A2h > 0.0 and A2 > 0.0 and cmin > 0.0 and sr > 0.0):
+            if not (A2h > 0.0 and A2 > 0.0 and cmin > 0.0 and sr > 0.0 and R1 + R2 + R3 + R4 > 0.0):
                 if guard:
                     alive[e] = 2
                     ero_row += E[IE, e]
@@ -143,13 +161,16 @@ def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, 
             dzz = bz1 * (w1 - w3) + bz2 * (w2 - w4)
             dvr_dz = bz1 * (u1 - u3) + bz2 * (u2 - u4)
             dvz_dr = br1 * (w1 - w3) + br2 * (w2 - w4)
-            dtt = (u1 + u2 + u3 + u4) / srh if srh > 0.0 else drr
+            # hoop rate consistent with the exact volume: (1/W) sum (dW/dr_I - W b_rI) v_rI (= alpha for v_r = alpha r)
+            Wh, h1, h2, h3, h4 = _moment(R1, R2, R3, R4, Z1, Z2, Z3, Z4)
+            dtt = (h1 * u1 + h2 * u2 + h3 * u3 + h4 * u4) / Wh - drr
             drz = 0.5 * (dvr_dz + dvz_dr)
             spin = 0.5 * (dvr_dz - dvz_dr)
             tv = drr + dzz + dtt
-            Vh = TWO_PI * 0.25 * srh * 0.5 * A2h
+            Vh = TWO_PI * Wh
             A = 0.5 * A2
-            V = TWO_PI * 0.25 * sr * A
+            W, m1, m2, m3, m4 = _moment(r1, r2, r3, r4, z1, z2, z3, z4)
+            V = TWO_PI * W
             # ---- rotate the deviatoric stress by the spin angle (Jaumann)
             so0, so1, so2, so3, po = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]
             th = spin * dt  # Cayley (Hughes-Winget) rotation: orthogonal, angle 2 atan(th) = 2 th + O(th^3)
@@ -202,14 +223,16 @@ def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, 
             srr = sn0 - pn - qv
             szz = sn1 - pn - qv
             stt = sn2 - pn - qv
-            hoop = 0.5 * math.pi * A * stt  # V sigma_tt / sum(r_I) = 2 pi A sigma_tt / 4
-            F[0, e] = V * (b1r * srr + b1z * sn3) + hoop
+            # hoop force 2 pi (dW/dr_I - W b_rI) sigma_tt: with V b_rI sigma_rr it is 2 pi sigma dW/dr_I when
+            # sigma_rr = sigma_tt, which sums to zero at interior nodes (the patch test)
+            ht = TWO_PI * stt
+            F[0, e] = V * (b1r * (srr - stt) + b1z * sn3) + ht * m1
             F[1, e] = V * (b1z * szz + b1r * sn3)
-            F[2, e] = V * (b2r * srr + b2z * sn3) + hoop
+            F[2, e] = V * (b2r * (srr - stt) + b2z * sn3) + ht * m2
             F[3, e] = V * (b2z * szz + b2r * sn3)
-            F[4, e] = -V * (b1r * srr + b1z * sn3) + hoop
+            F[4, e] = -V * (b1r * (srr - stt) + b1z * sn3) + ht * m3
             F[5, e] = -V * (b1z * szz + b1r * sn3)
-            F[6, e] = -V * (b2r * srr + b2z * sn3) + hoop
+            F[6, e] = -V * (b2r * (srr - stt) + b2z * sn3) + ht * m4
             F[7, e] = -V * (b2z * szz + b2r * sn3)
             # ---- hourglass (Flanagan-Belytschko, viscous)
             if qh > 0.0:

@@ -96,8 +96,8 @@ class Model:
         self.F = np.zeros((8, ne))
         conn = g.connectivity()
         rr, zz = self.r[conn], self.z[conn]
-        A = 0.5 * ((rr[:, 2] - rr[:, 0]) * (zz[:, 3] - zz[:, 1]) + (rr[:, 1] - rr[:, 3]) * (zz[:, 2] - zz[:, 0]))
-        V = 2 * np.pi * rr.mean(axis=1) * A
+        rn, zn = np.roll(rr, -1, axis=1), np.roll(zz, -1, axis=1)
+        V = 2 * np.pi * np.sum((rr + rn) * (rr * zn - rn * zz), axis=1) / 6.0  # 2 pi integral of r dA
         self.E[K.V0] = V
         self.E[K.MASS] = rho0 * V
         self.mass = np.zeros(nn)
@@ -144,6 +144,8 @@ class Model:
         self.dropped_momentum_z = 0.0
         self.presc_i = np.zeros(0, np.int64)
         self.presc_v = np.zeros((2, 0))
+        self.load_i = np.zeros(0, np.int64)
+        self.load_f = np.zeros((2, 0))
         self.dt = self._initial_dt()
         self.dt0 = self.dt
         self.ctl[K.C_DTMIN] = c.dt_floor * self.dt0 / c.dt_factor
@@ -154,6 +156,31 @@ class Model:
         self.presc_i = nodes
         self.presc_v = np.vstack([np.broadcast_to(vr, nodes.shape), np.broadcast_to(vz, nodes.shape)]).astype(float)
         self.vr[nodes], self.vz[nodes] = self.presc_v
+
+    def load(self, nodes, fr, fz):
+        """Constant external nodal forces (N) on ``nodes`` (their work is booked as external work)."""
+        nodes = np.asarray(nodes, np.int64)
+        self.load_i = nodes
+        self.load_f = np.vstack([np.broadcast_to(fr, nodes.shape), np.broadcast_to(fz, nodes.shape)]).astype(float)
+
+    def pressure(self, nodes, p):
+        """Nodal forces of a pressure p (Pa) on the boundary line through ``nodes`` (in order), pushing into
+        the mesh: each edge's surface of revolution times p, half to each end node."""
+        nodes = np.asarray(nodes, np.int64)
+        r, z = self.r[nodes], self.z[nodes]
+        dr, dz = np.diff(r), np.diff(z)
+        length = np.hypot(dr, dz)
+        area = np.pi * (r[:-1] + r[1:]) * length
+        nr_, nz_ = dz / length, -dr / length
+        mid_r, mid_z = 0.5 * (r[:-1] + r[1:]), 0.5 * (z[:-1] + z[1:])
+        rc, zc = self.centroids()
+        near = [int(np.argmin((rc - a) ** 2 + (zc - c) ** 2)) for a, c in zip(mid_r, mid_z)]  # the element behind each edge
+        inward = np.sign((rc[near] - mid_r) * nr_ + (zc[near] - mid_z) * nz_)
+        f = np.zeros((2, nodes.size))
+        for k in (0, 1):
+            f[0, k:k + area.size] += 0.5 * p * area * nr_ * inward
+            f[1, k:k + area.size] += 0.5 * p * area * nz_ * inward
+        self.load(nodes, f[0], f[1])
 
     def _dashpots(self, nodes):
         """Boundary share (area of revolution) and outward normal of each node of a boundary line."""
@@ -235,13 +262,14 @@ class Model:
 @njit(cache=True)
 def _advance(nr, nz, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail,
              rowbnd, fix, dash, zp, zs, dt_prev, t, t_stop, dt_factor, proj, zeta, rho, rho_max, buf_i, buf, hist, k0,
-             acc, presc_i, presc_v):
+             acc, presc_i, presc_v, load_i, load_f):
     """Steps until t_stop, the projectile at rest, an erosion (bookkeeping in Python) or a failure.
 
-    proj = [Zt, V, M, friction, active, exit depth of the tail]; hist rows (t, Zt, V, impulse/dt, contacts, max nodal force) from k0;
+    proj = [Zt, V, M, friction, active, exit depth of the tail, stop at rest]; hist rows (t, Zt, V, impulse/dt, contacts, max nodal force) from k0;
     acc = [hourglass work, boundary work, contact loss, eroded IE, work of prescribed velocities,
     axial impulse of the boundary dashpots];
-    presc_i, presc_v: nodes whose velocity (vr, vz) is prescribed, with the values.
+    presc_i, presc_v: nodes whose velocity (vr, vz) is prescribed, with the values;
+    load_i, load_f: nodes carrying constant external forces (fr, fz), work booked in acc[4].
     Returns (status, dt, t, k): status 0 reached t_stop, 1 erosion happened, 2 at rest, 3 failure, 4 history full, 5 the tail left the target.
     """
     k = k0
@@ -254,6 +282,14 @@ def _advance(nr, nz, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F,
         K_node_pass(nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd)
         acc[1] += rowbnd[0].sum() * dtv
         acc[5] += rowbnd[1].sum() * dtv
+        for a in range(load_i.size):
+            n = load_i[a]
+            ur, uz = vr[n], vz[n]
+            vr[n] += dtv * load_f[0, a] / mass[n]
+            vz[n] += dtv * load_f[1, a] / mass[n]
+            if on_axis[n]:
+                vr[n] = 0.0
+            acc[4] += dtv * (load_f[0, a] * 0.5 * (vr0[n] + vr[n]) + load_f[1, a] * 0.5 * (vz0[n] + vz[n]))
         for a in range(presc_i.size):
             n = presc_i[a]
             acc[4] += mass[n] * ((presc_v[0, a] - vr[n]) * presc_v[0, a] + (presc_v[1, a] - vz[n]) * presc_v[1, a])
@@ -288,7 +324,7 @@ def _advance(nr, nz, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F,
         for jj in range(nz):
             if rowero[jj] != 0.0:
                 return 1, dt, t, k
-        if proj[4] > 0.5 and proj[1] <= 0.0:
+        if proj[6] > 0.5 and proj[1] <= 0.0:
             return 2, dt, t, k
         if proj[4] > 0.5 and proj[0] - zeta[-1] > proj[5]:
             return 5, dt, t, k
@@ -326,11 +362,12 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
     buf = np.zeros((4, nn))
     vr0, vz0 = np.zeros(nn), np.zeros(nn)
     if projectile is not None:
-        proj = np.array([projectile.Zt, projectile.V, projectile.mass, projectile.friction, 1.0, model.z.max()])
+        proj = np.array([projectile.Zt, projectile.V, projectile.mass, projectile.friction, 1.0, model.z.max(),
+                         float(projectile.V > 0)])
         zeta, rho = np.ascontiguousarray(projectile.zeta, float), np.ascontiguousarray(projectile.rho, float)
         rho_max = float(rho.max())
     else:
-        proj = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+        proj = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0])
         zeta, rho, rho_max = np.array([0.0, 1.0]), np.array([0.0, 0.0]), 0.0
     cap = 200_000
     hist = np.zeros((6, cap))
@@ -368,7 +405,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
                                           model.q, model.ctl, model.rowdt, model.rowhg, model.rowero, model.rowfail,
                                           model.rowbnd, model.fix, model.dash, model.zp, model.zs, dt, model.t, t_stop,
                                           c.dt_factor, proj, zeta, rho, rho_max, buf_i, buf, hist, k, acc,
-                                          model.presc_i, model.presc_v)
+                                          model.presc_i, model.presc_v, model.load_i, model.load_f)
         model.steps += k_new - k
         k = k_new
         if st == 1:
