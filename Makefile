@@ -5,6 +5,8 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 CORES ?= 2
+# Mesh profile of the finite-element stage that `make check` builds and compares: full (default; also builds ci) or ci.
+FE_PROFILE ?= full
 # Exact versions of every dependency, generated from pyproject.toml's ranges by `make lock`.
 LOCK := requirements.lock
 
@@ -24,7 +26,7 @@ reproduce: install
 	$(BIN)/snakemake -c$(CORES)
 
 check: install
-	$(BIN)/snakemake -c$(CORES) all reproduce_check --forcerun reproduce_check
+	$(BIN)/snakemake -c$(CORES) all reproduce_check --forcerun reproduce_check --config fe_profile=$(FE_PROFILE)
 
 test: install
 	$(BIN)/python -m pytest

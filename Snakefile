@@ -8,7 +8,7 @@
 # a module re-runs exactly the rules whose tasks use it. Every rule declares
 # threads, resources (mem_mb, runtime in minutes) and a benchmark record.
 from penetration.config import check_config
-from penetration.pipeline import load_studies, task
+from penetration.pipeline import fe_scene_shots, load_studies, task
 
 configfile: "workflow/config.yaml"
 # Stop before any job runs if the config (file plus --config overrides) is invalid.
@@ -27,6 +27,20 @@ TIMING = ["figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_tra
 
 wildcard_constraints:
     scene=r"[A-Za-z0-9_]+",
+    profile=r"full|ci",
+    size=r"[0-9.]+",
+    nose=r"[a-z0-9_]+",
+    velocity=r"[0-9.]+",
+
+# FE outputs: `all` builds the configured profile and, for `full`, the CI's coarse profile too.
+FE_PROFILES = ["full", "ci"] if config["fe_profile"] == "full" else ["ci"]
+# check.outputs entries under figures/fe/{profile}/ stand for every profile built
+config["check"]["outputs"] = {path.format(profile=p): spec for path, spec in config["check"]["outputs"].items()
+                              for p in (FE_PROFILES if "{profile}" in path else [None])}
+
+
+def fe_calibration(profile):
+    return f"results/fe/{profile}/calibration_h{config['fe']['profiles'][profile]['element_size']}.json"
 
 
 include: "workflow/rules/geometry.smk"
@@ -35,6 +49,7 @@ include: "workflow/rules/trajectory.smk"
 include: "workflow/rules/cavity.smk"
 include: "workflow/rules/cavity_studies.smk"
 include: "workflow/rules/contrasts.smk"
+include: "workflow/rules/fe.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reference.smk"
 
@@ -47,3 +62,5 @@ rule all:
         list(config["check"]["outputs"]),
         "figures/diff_summary.md",
         TIMING,
+        expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
+        expand("figures/timing/fe_mesh_study_{profile}.{ext}", profile=FE_PROFILES, ext=["png", "csv"]),

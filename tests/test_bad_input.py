@@ -120,7 +120,7 @@ def scene_file(tmp_path, text=None, **changes):
     ({"level": "trajectory", "effects": ["inertial"]}, "needs ['static']"),
     ({"level": "trajectory", "effects": ["crater", "static", "inertial"], "friction": 0.1}, "friction is set"),
     ({"level": "trajectory", "effects": ["crater", "static", "inertial", "friction"]}, "friction > 0"),
-    ({"lock": "literal"}, "only at level cavity"),
+    ({"lock": "literal"}, "only at levels cavity and fe"),
     ({"velocities": "fast"}, "a list of a number"),
 ])
 def test_scene_errors(tmp_path, changes, needle):
@@ -220,3 +220,31 @@ def test_unknown_precision_class_is_noticed_at_load(monkeypatch, spec, where):
     with pytest.raises(ConfigError, match=f"check.outputs.figures/nose_contrasts.csv.{where}: precision class "
                                           f"'cavity_gain,' is not defined"):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+FE_BASE = yaml.safe_load((ROOT / "workflow/scenes/fe/table3.yaml").read_text())
+
+
+@pytest.mark.parametrize("changes,needle", [
+    ({"target": {"rho": 2440.0, "fc": 48e6, "strength": {"law": "li_chen"}}}, "target.strength is not used at level fe"),
+    ({"effects": ["strain_rate", "damage"]}, "effect erosion and fe.erosion_strain go together"),
+    ({"fe": {"target": "semi_infinite"}}, "effect erosion and fe.erosion_strain go together"),
+    ({"effects": ["erosion", "crater"]}, "not used at level fe"),
+    ({"fe": {"target": "infinite", "erosion_strain": "calibrated"}}, "semi_infinite"),
+    ({"fe": {"target": "block", "erosion_strain": -0.3}}, "erosion_strain"),
+    ({"level": "cavity", "effects": ["cavity"], "target": {"rho": 2440.0, "fc": 48e6, "strength": {"law": "li_chen"}}},
+     "fe settings are given at level cavity"),
+])
+def test_fe_scene_errors(tmp_path, changes, needle):
+    path = tmp_path / "scene.yaml"
+    path.write_text(yaml.safe_dump({**FE_BASE, **changes}))
+    with pytest.raises((SceneError, ConfigError)) as err:
+        read_scene(path, SCENE_SCHEMA, ("fe", "cavity"))
+    assert needle in str(err.value) and "allowed" in str(err.value)
+
+
+def test_fe_scenes_of_the_pipeline_are_valid():
+    from penetration.pipeline import fe_scene_shots
+    shots = fe_scene_shots(ROOT / "workflow/scenes/fe", SCENE_SCHEMA)
+    assert set(shots) == {"do1", "do1_block", "table3", "fig15"}
+    assert ("double_ogive", "835") in shots["do1"] and len(shots["table3"]) == 12 and len(shots["fig15"]) == 24

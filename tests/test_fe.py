@@ -14,14 +14,14 @@ from penetration.hjc import HJC
 
 def _pass(m, dt):
     m.ctl[K.C_DT] = dt
-    K.element_pass(m.nr, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt, m.rowhg,
+    K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt, m.rowhg,
                    m.rowero, m.rowfail)
 
 
 def _residual(m):
     """Nodal force sum (r, z) of the element forces, by the solver's own gather."""
     vr, vz = np.zeros_like(m.vr), np.zeros_like(m.vz)
-    K.node_pass(m.nr, m.nz, m.F, m.alive, np.ones_like(m.mass), vr, vz, np.zeros_like(vr), np.zeros_like(vz),
+    K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, np.ones_like(m.mass), vr, vz, np.zeros_like(vr), np.zeros_like(vz),
                 m.nstate, 1.0, np.zeros_like(m.fix), m.dash, 0.0, 0.0, m.rowbnd)
     return -vr, -vz
 

@@ -97,11 +97,12 @@ def test_scene_schema_effects_are_the_registries():
     import json
     from pathlib import Path
     from penetration.cavity_level import MATERIAL_EFFECTS
+    from penetration.scenes import FE_EFFECTS
     from penetration.trajectory import EFFECTS
     schema = json.loads((Path(__file__).resolve().parents[1] / "workflow/schemas/scene.schema.json").read_text())
     named = set(schema["properties"]["effects"]["items"]["enum"])
-    assert named == set(EFFECTS) | set(MATERIAL_EFFECTS)
-    assert not set(EFFECTS) & set(MATERIAL_EFFECTS)
+    assert named == set(EFFECTS) | set(MATERIAL_EFFECTS) | set(FE_EFFECTS)
+    assert not set(EFFECTS) & set(MATERIAL_EFFECTS) and not (set(EFFECTS) | set(MATERIAL_EFFECTS)) & set(FE_EFFECTS)
 
 
 @pytest.mark.parametrize("nose", [Ogive(3, 0.07), Cone(0.07, 0.3), DO, MinimumNstar(0.07, 0.3), Flat(0.07)],

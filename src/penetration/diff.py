@@ -365,42 +365,55 @@ def fig15_rows(refs, fig15, do1_pd_stated, do1_pd_calibrated):
             _row(ex, ex.quantity, "DO1 835 m/s (ours; S calibrated to it)", do1_pd_calibrated, "not-derivable")]
 
 
+def level_rows(refs, cells, shots, level, calibration):
+    """A simulation level against Table 3's simulation column, the 1200 m/s gains and Fig 14's claims and axes.
+
+    cells: rows (velocity_ms, nose, depth); shots: rows (nose, velocity,
+    peak_deceleration_m_s2, duration); ``level``: its label in the cases
+    ("cavity level"); ``calibration``: what was calibrated on DO1.
+    """
+    R, rows = refs, []
+    for r in cells:
+        ref = R[f"table3.sim.{r['velocity_ms']}.{r['nose']}"]
+        rows.append(compare(ref, r["depth"], case=f"{ref.case} ({level}; {calibration})", calibrated=True))
+    by = {(r["velocity_ms"], r["nose"]): r["depth"] for r in cells}
+    for key, other in (("text.gain_1200_crh45", "crh45"), ("text.gain_1200_crh3", "crh3")):
+        rows.append(compare(R[key], by[(1200, "double_ogive")] - by[(1200, other)], case=f"1200 (ours: {level})",
+                            calibrated=True))
+    at = {(c["nose"], c["velocity"]): c for c in shots}
+    velocities = sorted({c["velocity"] for c in shots})
+    for ref_id, other, q in (("fig14.peak_do_below_crh3", "crh3", "peak_deceleration_m_s2"),
+                             ("fig14.peak_do_below_crh45", "crh45", "peak_deceleration_m_s2"),
+                             ("fig14.pulse_do_longer_crh3", "crh3", "duration"),
+                             ("fig14.pulse_do_longer_crh45", "crh45", "duration")):
+        ref = R[ref_id]
+        for v in velocities:
+            diff = at[("double_ogive", v)][q] - at[(other, v)][q]
+            rows.append(_row(ref, ref.quantity + " (relative)", f"{v:.0f} m/s ({level})", diff / at[(other, v)][q],
+                             agreement(holds(ref.relation, 0.0, diff, 0.0), True)))
+    for v in velocities:
+        at_v = [c for c in shots if c["velocity"] == v]
+        peak = max(at_v, key=lambda c: c["peak_deceleration_m_s2"])
+        longest = max(c["duration"] for c in at_v)
+        ref = R[f"fig14.g_axis_max.{v:.0f}"]
+        rows.append(compare(ref, peak["peak_deceleration_m_s2"] / UNITS[ref.unit],
+                            case=f"{v:.0f} m/s: largest peak (g; {peak['nose']}; {level})", calibrated=True))
+        for kind in ("t_axis_max", "t_axis_last"):
+            ref = R[f"fig14.{kind}.{v:.0f}"]
+            rows.append(compare(ref, longest / UNITS[ref.unit], case=f"{v:.0f} m/s: longest time to rest (ms; {level})",
+                                calibrated=True))
+    return rows
+
+
 def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
     """Cavity level: Table 3's simulation column, the 1200 m/s gains, Fig 14, Fig 12.
 
     table3: rows with velocity_ms, nose, cavity_m; cavity: rows of the cavity
     Table 3 scene (nose, velocity, peak_deceleration_m_s2, duration).
     """
-    R, rows = refs, []
-    for r in table3:
-        ref = R[f"table3.sim.{r['velocity_ms']}.{r['nose']}"]
-        rows.append(compare(ref, r["cavity_m"], case=f"{ref.case} (cavity level; strength scale calibrated on DO1)",
-                            calibrated=True))
-    by = {(r["velocity_ms"], r["nose"]): r["cavity_m"] for r in table3}
-    for key, other in (("text.gain_1200_crh45", "crh45"), ("text.gain_1200_crh3", "crh3")):
-        rows.append(compare(R[key], by[(1200, "double_ogive")] - by[(1200, other)], case="1200 (ours: cavity level)",
-                            calibrated=True))
-    at = {(c["nose"], c["velocity"]): c for c in cavity}
-    for ref_id, other, q in (("fig14.peak_do_below_crh3", "crh3", "peak_deceleration_m_s2"),
-                             ("fig14.peak_do_below_crh45", "crh45", "peak_deceleration_m_s2"),
-                             ("fig14.pulse_do_longer_crh3", "crh3", "duration"),
-                             ("fig14.pulse_do_longer_crh45", "crh45", "duration")):
-        ref = R[ref_id]
-        for v in sorted({c["velocity"] for c in cavity}):
-            diff = at[("double_ogive", v)][q] - at[(other, v)][q]
-            rows.append(_row(ref, ref.quantity + " (relative)", f"{v:.0f} m/s (cavity level)", diff / at[(other, v)][q],
-                             agreement(holds(ref.relation, 0.0, diff, 0.0), True)))
-    for v in sorted({c["velocity"] for c in cavity}):
-        at_v = [c for c in cavity if c["velocity"] == v]
-        peak = max(at_v, key=lambda c: c["peak_deceleration_m_s2"])
-        longest = max(c["duration"] for c in at_v)
-        ref = R[f"fig14.g_axis_max.{v:.0f}"]
-        rows.append(compare(ref, peak["peak_deceleration_m_s2"] / UNITS[ref.unit],
-                            case=f"{v:.0f} m/s: largest peak (g; {peak['nose']}; cavity level)", calibrated=True))
-        for kind in ("t_axis_max", "t_axis_last"):
-            ref = R[f"fig14.{kind}.{v:.0f}"]
-            rows.append(compare(ref, longest / UNITS[ref.unit], case=f"{v:.0f} m/s: longest time to rest (ms; cavity level)",
-                                calibrated=True))
+    R = refs
+    rows = level_rows(refs, [{**r, "depth": r["cavity_m"]} for r in table3], cavity, "cavity level",
+                      "strength scale calibrated on DO1")
     ref = R["table2.dop"]
     rows.append(_row(ref, "dop", f"DO1 (cavity level; strength scale {scale:.4g} calibrated to it)", do1_depth,
                      "not-derivable"))
@@ -408,6 +421,33 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
         rows.append(unstated(R["table1.fs"], erosion_strain,
                              case="cavity level: plastic strain beyond which the target carries no deviatoric stress; "
                                   "calibrated on DO1 (the paper's fs erodes elements of its unstated 3-D mesh)"))
+    return rows
+
+
+def fe_rows(refs, table3, ratios, do1_depth, fs, element_size):
+    """Finite-element level: level_rows, the Table 3 increments (goal: within 2 points), the DO1 calibration, fs.
+
+    table3: rows of figures/fe/{profile}/table3.csv; ratios: rows of its _ratios file.
+    """
+    level, cal = "FE level", f"fs calibrated on DO1 at h = {element_size * 1e3:.3g} mm"
+    cells = [{"velocity_ms": int(r["velocity_ms"]), "nose": r["nose"], "depth": r["fe_m"]} for r in table3]
+    shots = [{"nose": r["nose"], "velocity": float(r["velocity_ms"]), "peak_deceleration_m_s2": r["peak_deceleration_m_s2"],
+              "duration": r["time_to_rest_s"]} for r in table3]
+    rows = level_rows(refs, cells, shots, level, cal)
+    keys = {"DO/CRH 4.5": ("table3.inc_equiv", "double_ogive"), "DO/CRH 3": ("table3.inc_crh3", "double_ogive"),
+            "CRH 4.5/CRH 3": ("table3.inc_crh3", "crh45")}
+    for r in ratios:
+        prefix, nose = keys[r["contrast"]]
+        ref = refs[f"{prefix}.{int(r['velocity_ms'])}.{nose}"]
+        ours = 100 * (r["fe_ratio"] - 1)
+        ok = abs(ours - ref.value) <= 2.0
+        rows.append(Row(ref.item, ref.quantity + " (within 2 points)", f"{ref.case} ({level}; {cal})", ref.value, ours,
+                        _rel(ref.value, ours), 2.0 / abs(ref.value), agreement(ok, True)))
+    ref = refs["table2.dop"]
+    rows.append(_row(ref, "dop", f"DO1 ({level}; fs = {fs:.4g} calibrated to it at h = {element_size * 1e3:.3g} mm)",
+                     do1_depth, "not-derivable"))
+    rows.append(unstated(refs["table1.fs"], fs, case=f"{level}: failure strain calibrated on DO1 at h = "
+                         f"{element_size * 1e3:.3g} mm (the paper's 0.38 belongs to its unstated 3-D mesh)"))
     return rows
 
 

@@ -118,3 +118,13 @@ def load_studies(folder, schema_path) -> dict:
             raise config.ConfigError(f"{path}: no study named {name!r}; known: {sorted(schema['$defs'])}")
         studies[name] = config.load_with(path, {**schema["$defs"][name], "$defs": schema["$defs"]})
     return studies
+
+
+def fe_scene_shots(folder, schema_path) -> dict:
+    """Shots of the finite-element scenes: scene name -> [(nose, velocity tag)], every scene validated (level fe)."""
+    from .scenes import read_scene, velocities
+    shots = {}
+    for path in sorted(Path(folder).glob("*.yaml")):
+        data = read_scene(path, schema_path, ("fe",))
+        shots[path.stem] = [(nose, f"{v:g}") for v in velocities(data["velocities"]) for nose in data["noses"]]
+    return shots

@@ -48,13 +48,13 @@ def strength_factor(fc, law="li_chen"):
 
 @dataclass(frozen=True)
 class Target:
-    """Concrete target: density rho, strength fc and strength factor S."""
+    """Concrete target: density rho, strength fc and strength factor S (None where no model uses it: level fe)."""
     rho: float
     fc: float
-    S: float
+    S: float | None
 
     def __post_init__(self):
-        for name in ("rho", "fc", "S"):
+        for name in ("rho", "fc", "S") if self.S is not None else ("rho", "fc"):
             v = np.asarray(getattr(self, name), float)
             if not (np.all(np.isfinite(v)) and np.all(v > 0)):
                 raise ParameterError("target", name, getattr(self, name), f"finite {name} > 0 (SI units)")

@@ -20,6 +20,8 @@ from .resistance import Target, strength_factor
 from .trajectory import EFFECTS, EXCLUDES
 
 MAX_VELOCITIES = 1000
+# Effects of the finite-element level beyond the material's (fe.erosion_strain sets the criterion's value).
+FE_EFFECTS = {"erosion": "element erosion once the equivalent plastic strain reaches fe.erosion_strain"}
 # Level -> (effects it can use, effects it must have, what it is). The analytic
 # level is Eq 9, the closed form of exactly crater + static + inertial; a
 # trajectory needs a static term to stop; the cavity level's forces come from
@@ -29,7 +31,9 @@ LEVELS = {
     "trajectory": (set(EFFECTS) - {"cavity"}, {"static"}, "the rigid-body trajectory with Eq 7's terms"),
     "cavity": (set(EFFECTS) - EXCLUDES["cavity"] | set(MATERIAL_EFFECTS), {"cavity"},
                "the trajectory with the HJC cavity-expansion law"),
+    "fe": (set(FE_EFFECTS) | {"friction"} | set(MATERIAL_EFFECTS), set(), "the axisymmetric finite-element model with HJC"),
 }
+FE_TARGETS = ("semi_infinite", "block")
 
 
 class SceneError(ValueError):
@@ -50,6 +54,7 @@ class Scene:
     ramp_depth: float | None = None
     provenance: dict = field(default_factory=dict)
     material: dict = field(default_factory=dict)
+    fe: dict = field(default_factory=dict)
 
 
 def read_scene(path, schema_path, levels=None):
@@ -57,7 +62,7 @@ def read_scene(path, schema_path, levels=None):
     data = config.load(path, schema_path)
     if levels is not None and data["level"] not in levels:
         raise SceneError(f"{path}: level: {data['level']!r} is not run by this rule; allowed: {list(levels)}"
-                         + (" (cavity scenes live in workflow/scenes/cavity/)" if data["level"] == "cavity" else ""))
+                         + ({"cavity": " (cavity scenes live in workflow/scenes/cavity/)", "fe": " (fe scenes live in workflow/scenes/fe/)"}.get(data["level"], "")))
     check_level(data, str(path))
     velocities(data["velocities"], f"{path}: velocities")
     return data
@@ -98,8 +103,19 @@ def check_level(data, where="scene"):
         raise SceneError(f"{where}: effect friction is listed with friction = {data.get('friction', 0.0)}; "
                          "allowed: friction > 0 (a coefficient up to 1)")
     conventions = [k for k in ("lock", "tension") if k in data]
-    if conventions and level != "cavity":
-        raise SceneError(f"{where}: {conventions} apply to the HJC material; allowed only at level cavity")
+    if conventions and level not in ("cavity", "fe"):
+        raise SceneError(f"{where}: {conventions} apply to the HJC material; allowed only at levels cavity and fe")
+    fe = data.get("fe")
+    if fe is not None and level != "fe":
+        raise SceneError(f"{where}: fe settings are given at level {level}; allowed only at level fe")
+    if level == "fe":
+        if "strength" in data["target"]:
+            raise SceneError(f"{where}: target.strength is not used at level fe (the target is HJC concrete); "
+                             "allowed: rho and fc only")
+        has = "erosion_strain" in (fe or {})
+        if ("erosion" in effects) != has:
+            raise SceneError(f"{where}: effect erosion and fe.erosion_strain go together; allowed: list erosion and set "
+                             "fe.erosion_strain ('calibrated' or a strain > 0), or neither")
 
 
 def _nose(spec, radius, inferred):
@@ -126,8 +142,11 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
         prov["radius"] = f"inferred ({radius['inferred']})"
         radius = 0.5 * diameters[radius["inferred"]]["diameter"]
     t = data["target"]
-    strength = t["strength"]
-    if "law" in strength:
+    strength = t.get("strength", {})
+    if not strength:
+        S = None
+        prov["S"] = "none (level fe: HJC target)"
+    elif "law" in strength:
         S = float(strength_factor(t["fc"], strength["law"]))
         prov["S"] = f"law {strength['law']}"
     elif "calibrated" in strength:
@@ -140,7 +159,7 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
     return Scene(name, data["projectile"]["mass"], radius, noses, Target(t["rho"], t["fc"], S),
                  velocities(data["velocities"], f"{name}: velocities"), data["level"], tuple(data["effects"]),
                  data.get("friction", 0.0), data.get("ramp_depth"), prov,
-                 {k: data[k] for k in ("lock", "tension") if k in data})
+                 {k: data[k] for k in ("lock", "tension") if k in data}, dict(data.get("fe", {})))
 
 
 def scene_name(path):

@@ -106,10 +106,12 @@ def _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio):
 
 
 @njit(parallel=True, cache=True, error_model="numpy", fastmath=FAST)
-def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail):
+def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail):
     """Strain rates, stress update, internal energy, forces, hourglass, stable time step and erosion, per row.
 
-    alive: 1 live, 0 eroded; an element that erodes in this pass is set to 2.
+    Rows j0 <= j < j1 only (the active window). alive: 1 live, 0 eroded, 3 not
+    yet active, 4 retired behind the window; an element that erodes in this
+    pass is set to 2.
     Per row j: rowdt[j] the smallest stable step, rowhg[j] the hourglass work,
     rowero[j] the internal energy of the elements eroded, rowfail[j] = the
     element index of a failure (-1 none) with its code in rowfail[nz + j].
@@ -117,7 +119,8 @@ def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, 
     dt = ctl[C_DT]
     qh, q1, q2 = ctl[C_QH], ctl[C_Q1], ctl[C_Q2]
     erosion, ev, guard, dtmin = int(ctl[C_EROSION]), ctl[C_EROSION_VALUE], ctl[C_GUARD] > 0.5, ctl[C_DTMIN]
-    for j in prange(nz):
+    for jj in prange(j1 - j0):
+        j = j0 + jj
         s6 = np.zeros(6)
         d6 = np.zeros(6)
         dt_row, hg_row, ero_row, fail, code = 1e30, 0.0, 0.0, -1, 0
@@ -292,21 +295,23 @@ def element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, 
 
 
 @njit(parallel=True, cache=True)
-def node_pass(nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd):
+def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd):
     """Gather element forces (internal + hourglass), add boundary dashpots, update velocities by dtv.
 
     fix[n]: 1 holds v_r = 0 (axis, roller), 2 holds v_z = 0, 3 both. dash[:, n]
     = (area, n_r, n_z): a non-reflecting (Lysmer) dashpot on the node's share
-    of the boundary, traction -rho c_p v_n n - rho c_s v_t. rowbnd[0, j]: power
-    absorbed, rowbnd[1, j]: axial force of the dashpots, per node row. vr0, vz0
-    receive the velocities before the update (for the contact's work).
+    of the boundary, traction -rho c_p v_n n - rho c_s v_t, taken at the new
+    velocity. rowbnd[0, j]: power absorbed, rowbnd[1, j]: axial force of the
+    dashpots, per node row. vr0, vz0 receive the velocities before the update
+    (for the contact's work).
     """
-    for j in prange(nz + 1):
+    for jj in prange(j1 - j0 + 1):
+        j = j0 + jj
         pw = 0.0
         fb = 0.0
         for i in range(nr + 1):
             n = j * (nr + 1) + i
-            if nstate[n] == 2:
+            if nstate[n] >= 2:
                 continue
             fr = 0.0
             fz = 0.0
@@ -333,19 +338,26 @@ def node_pass(nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, 
             ur, uz = vr[n], vz[n]
             vr0[n] = ur
             vz0[n] = uz
-            da = dash[0, n]
-            if da > 0.0:
-                nr_, nz_ = dash[1, n], dash[2, n]
-                vn = ur * nr_ + uz * nz_
-                er = -da * (zp * vn * nr_ + zs * (ur - vn * nr_))
-                ez = -da * (zp * vn * nz_ + zs * (uz - vn * nz_))
-                pw -= er * ur + ez * uz
-                fb += ez
-                fr -= er
-                fz -= ez
             m = mass[n]
             ur -= dtv * fr / m
             uz -= dtv * fz / m
+            da = dash[0, n]
+            if da > 0.0:
+                # dashpot implicit in the new velocity: v' = v*/(1 + dtv Z da/m) per direction (stable for any
+                # damping; an explicit dashpot at the wave impedance is near-critically damped and needs a
+                # smaller step); its work is the impulse times the mean of the old and new velocities
+                nr_, nz_ = dash[1, n], dash[2, n]
+                vn = ur * nr_ + uz * nz_
+                tr_, tz_ = ur - vn * nr_, uz - vn * nz_
+                vn1 = vn / (1.0 + dtv * zp * da / m)
+                cn = 1.0 / (1.0 + dtv * zs * da / m)
+                ur1 = vn1 * nr_ + tr_ * cn
+                uz1 = vn1 * nz_ + tz_ * cn
+                ir = m * (ur1 - ur)  # impulse of the dashpot
+                iz = m * (uz1 - uz)
+                pw -= (ir * 0.5 * (vr0[n] + ur1) + iz * 0.5 * (vz0[n] + uz1)) / dtv
+                fb += iz / dtv
+                ur, uz = ur1, uz1
             fx = fix[n]
             if fx & 1:
                 ur = 0.0
@@ -360,7 +372,7 @@ def node_pass(nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, 
 @njit(parallel=True, cache=True)
 def move(r, z, vr, vz, nstate, dt):
     for n in prange(r.size):
-        if nstate[n] != 2:
+        if nstate[n] < 2:
             r[n] += dt * vr[n]
             z[n] += dt * vz[n]
 
@@ -388,7 +400,7 @@ def contact(r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, dt, Zt, V, V0, M, zet
     K = zeta.size
     m_act = 0
     for n in range(r.size):
-        if nstate[n] == 2:
+        if nstate[n] >= 2:
             continue
         rp = r[n] + dt * vr[n]
         if rp >= rho_max:

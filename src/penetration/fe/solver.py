@@ -30,7 +30,7 @@ from .mesh import Grid
 @dataclass(frozen=True)
 class Controls:
     """Numerical controls; defaults follow LS-DYNA's (QH 0.1, Q1 1.5, Q2 0.06, time-step factor 0.9)."""
-    dt_factor: float = 0.67
+    dt_factor: float = 0.9
     hourglass: float = 0.1
     q1: float = 1.5
     q2: float = 0.06
@@ -44,6 +44,8 @@ class Controls:
     end_time: float = 0.05
     output_interval: float = 1e-4
     max_energy_error: float = 0.5  # stop (unstable) when the audit's relative error exceeds this
+    window_ahead: float | None = None   # m: rows computed down to this far ahead of the tip (None: whole domain)
+    window_behind: float | None = None  # m: rows further behind the tip than this are retired (None: kept)
     progress: bool | None = None   # None: on a terminal only
 
     def __post_init__(self):
@@ -58,6 +60,10 @@ class Controls:
         for key in ("lateral", "bottom"):
             if getattr(self, key) not in K.BOUNDARIES:
                 raise ParameterError("fe controls", key, getattr(self, key), f"one of {sorted(K.BOUNDARIES)}")
+        for key in ("window_ahead", "window_behind"):
+            v = getattr(self, key)
+            if v is not None and not v > 0:
+                raise ParameterError("fe controls", key, v, "> 0 (m) or None")
         if not (self.end_time > 0 and self.output_interval > 0):
             raise ParameterError("fe controls", "end_time, output_interval", (self.end_time, self.output_interval), "> 0 (s)")
 
@@ -142,6 +148,11 @@ class Model:
         self.eroded_mass = 0.0
         self.dropped_mass = 0.0
         self.dropped_momentum_z = 0.0
+        self.j0, self.j1 = 0, g.nz
+        self._window_started = False
+        self.E_window = 0.0
+        self.window_mass = 0.0
+        self.dash_base = self.dash.copy()
         self.presc_i = np.zeros(0, np.int64)
         self.presc_v = np.zeros((2, 0))
         self.load_i = np.zeros(0, np.int64)
@@ -210,21 +221,82 @@ class Model:
         """Stable step of the undeformed mesh (one element pass at rest)."""
         self.ctl[K.C_DT] = 0.0
         E0 = self.E.copy()
-        K.element_pass(self.nr, self.nz, self.r, self.z, self.vr, self.vz, self.E, self.alive, self.F, self.kind,
+        K.element_pass(self.nr, self.nz, 0, self.nz, self.r, self.z, self.vr, self.vz, self.E, self.alive, self.F, self.kind,
                        self.q, self.ctl, self.rowdt, self.rowhg, self.rowero, self.rowfail)
         self.E[:] = E0
         self.F[:] = 0.0
         return self.controls.dt_factor * float(self.rowdt.min())
 
+    def set_window(self, Zt):
+        """Activate rows down to window_ahead below the tip, retire rows more than window_behind above it.
+
+        Retired elements' internal energy and their nodes' kinetic energy and
+        momentum are booked (E_window, dropped_momentum_z); a non-reflecting
+        dashpot sits on the bottom node row of the window while it is above
+        the domain's bottom.
+        """
+        c, g = self.controls, self.grid
+        if c.window_ahead is None and c.window_behind is None:
+            return
+        z0 = g.Z[:, 0]  # initial depth of each node row (the mesh is a tensor grid)
+        changed = False
+        if c.window_ahead is not None:
+            j1 = int(min(g.nz, np.searchsorted(z0, Zt + c.window_ahead) + 1))
+            nn_row = g.nr + 1
+            if not self._window_started:
+                self.alive[j1 * g.nr:][self.alive[j1 * g.nr:] == 1] = 3
+                self.nstate[(j1 + 1) * nn_row:][self.nstate[(j1 + 1) * nn_row:] == 0] = 3
+                self.j1 = j1
+                changed = True
+            elif j1 > self.j1:
+                el = slice(self.j1 * g.nr, j1 * g.nr)
+                self.alive[el][self.alive[el] == 3] = 1
+                nodes = slice((self.j1 + 1) * nn_row, (j1 + 1) * nn_row)
+                self.nstate[nodes][self.nstate[nodes] == 3] = 0
+                self.j1 = j1
+                changed = True
+        if c.window_behind is not None:
+            j0 = int(np.searchsorted(z0, Zt - c.window_behind) - 1)
+            if j0 > self.j0:
+                el = np.arange(self.j0 * g.nr, j0 * g.nr)
+                live = el[self.alive[el] == 1]
+                self.E_window += float(self.E[K.IE, live].sum())
+                self.window_mass += float(self.E[K.MASS, live].sum())
+                self.alive[live] = 4
+                nodes = np.arange(self.j0 * (g.nr + 1), j0 * (g.nr + 1))
+                nodes = nodes[self.nstate[nodes] < 2]
+                m = self.mass[nodes]
+                self.E_window += 0.5 * float(np.sum(m * (self.vr[nodes] ** 2 + self.vz[nodes] ** 2)))
+                self.dropped_momentum_z += float(np.sum(m * self.vz[nodes]))
+                self.nstate[nodes] = 2
+                self.vr[nodes] = 0.0
+                self.vz[nodes] = 0.0
+                self.rowdt[self.j0:j0] = 1e30
+                self.j0 = j0
+                changed = True
+        if changed or not self._window_started:
+            self._window_started = True
+            self.rowdt[self.j1:] = 1e30
+            self.rowhg[:self.j0] = 0.0
+            self.rowhg[self.j1:] = 0.0
+            self.rowero[:self.j0] = 0.0
+            self.rowero[self.j1:] = 0.0
+            self.rowfail[:] = -1
+            self.rowbnd[:, :self.j0] = 0.0
+            self.rowbnd[:, self.j1 + 1:] = 0.0
+            self.dash[:] = self.dash_base
+            if self.j1 < g.nz:
+                self._dashpots(self.j1 * (g.nr + 1) + np.arange(g.nr + 1))
+
     def kinetic_energy(self):
-        keep = self.nstate != 2
+        keep = self.nstate < 2
         return 0.5 * float(np.sum(self.mass[keep] * (self.vr[keep] ** 2 + self.vz[keep] ** 2)))
 
     def internal_energy(self):
         return float(self.E[K.IE, self.alive == 1].sum())
 
     def momentum_z(self):
-        keep = self.nstate != 2
+        keep = self.nstate < 2
         return float(np.sum(self.mass[keep] * self.vz[keep]))
 
     def centroids(self):
@@ -260,7 +332,7 @@ class Model:
 
 
 @njit(cache=True)
-def _advance(nr, nz, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail,
+def _advance(nr, nz, j0, j1, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail,
              rowbnd, fix, dash, zp, zs, dt_prev, t, t_stop, dt_factor, proj, zeta, rho, rho_max, buf_i, buf, hist, k0,
              acc, presc_i, presc_v, load_i, load_f):
     """Steps until t_stop, the projectile at rest, an erosion (bookkeeping in Python) or a failure.
@@ -279,7 +351,7 @@ def _advance(nr, nz, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F,
         dt_new = min(dt_new, 1.2 * dt)
         dtv = 0.5 * (dt + dt_new) if t > 0.0 else dt_new
         dt = dt_new
-        K_node_pass(nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd)
+        K_node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd)
         acc[1] += rowbnd[0].sum() * dtv
         acc[5] += rowbnd[1].sum() * dtv
         for a in range(load_i.size):
@@ -306,7 +378,7 @@ def _advance(nr, nz, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F,
             proj[0] += dt * V1
         K_move(r, z, vr, vz, nstate, dt)
         ctl[0] = dt
-        K_element_pass(nr, nz, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail)
+        K_element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail)
         acc[0] += rowhg.sum()
         acc[3] += rowero.sum()
         t += dt
@@ -356,7 +428,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
     Raises Unstable with a diagnostic when the run fails.
     """
     c = model.controls
-    show = c.progress if c.progress is not None else sys.stderr.isatty()
+    show = c.progress if c.progress is not None else bool(getattr(sys.stderr, "isatty", lambda: False)())
     nn = model.r.size
     buf_i = np.zeros(nn, np.int64)
     buf = np.zeros((4, nn))
@@ -386,21 +458,23 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
         ke_t = model.kinetic_energy()
         ke_p = 0.5 * proj[2] * proj[1] ** 2 * proj[4]
         ie = model.internal_energy()
-        total = ke_t + ke_p + ie + acc[0] + acc[1] + acc[2] + acc[3] + model.E_eroded - acc[4]
+        total = ke_t + ke_p + ie + acc[0] + acc[1] + acc[2] + acc[3] + model.E_eroded + model.E_window - acc[4]
         pz = model.momentum_z() + proj[2] * proj[1] * proj[4] + model.dropped_momentum_z - acc[5]
         row = dict(t=model.t, steps=model.steps, ke_target=ke_t, ke_projectile=ke_p, internal=ie, hourglass=acc[0],
-                   boundary=acc[1], contact=acc[2], eroded=acc[3] + model.E_eroded, external=acc[4], total=total,
+                   boundary=acc[1], contact=acc[2], eroded=acc[3] + model.E_eroded, window=model.E_window, external=acc[4], total=total,
                    energy_error=(total - E0) / (E0 + abs(acc[4])) if E0 + abs(acc[4]) > 0 else 0.0, momentum_z=pz,
                    momentum_error=(pz - P0) / abs(P0) if P0 != 0 else pz, eroded_mass=model.eroded_mass,
-                   dropped_mass=model.dropped_mass, depth=proj[0], velocity=proj[1], dt=dt,
+                   dropped_mass=model.dropped_mass, window_mass=model.window_mass, depth=proj[0], velocity=proj[1], dt=dt,
                    alive=int((model.alive == 1).sum()))
         audit.append(row)
         return row
 
+    if projectile is not None:
+        model.set_window(proj[0])
     record()
     while True:
         t_stop = min(next_out + c.output_interval, c.end_time)
-        st, dt, model.t, k_new = _advance(model.nr, model.nz, model.r, model.z, model.vr, model.vz, vr0, vz0, model.mass,
+        st, dt, model.t, k_new = _advance(model.nr, model.nz, model.j0, model.j1, model.r, model.z, model.vr, model.vz, vr0, vz0, model.mass,
                                           model.nstate, model.on_axis, model.E, model.alive, model.F, model.kind,
                                           model.q, model.ctl, model.rowdt, model.rowhg, model.rowero, model.rowfail,
                                           model.rowbnd, model.fix, model.dash, model.zp, model.zs, dt, model.t, t_stop,
@@ -410,6 +484,8 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
         k = k_new
         if st == 1:
             model._erode_bookkeeping()
+        if projectile is not None and st in (0, 1):
+            model.set_window(proj[0])
         if st == 3:
             bad = model.rowfail[:model.nz]
             jj = int(np.flatnonzero(bad >= 0)[0])
@@ -435,7 +511,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
                 break
             now = time.perf_counter()
             if show or log is not None:
-                if now - last_print > 2.0 or st in (0, 2, 5):
+                if now - last_print > 2.0 or st in (2, 5):
                     last_print = now
                     line = (f"t {model.t * 1e3:8.3f} ms  steps {model.steps:7d}  depth {proj[0]:7.4f} m  "
                             f"v {proj[1]:8.2f} m/s  energy error {row['energy_error']:+.2e}  "

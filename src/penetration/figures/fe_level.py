@@ -1,0 +1,270 @@
+"""Outputs of the finite-element level: Table 3's fe column, Figs 12-15, nose contrasts, DO1 fields, mesh study.
+
+Every task reads the per-shot results of ``tasks.fe`` (JSON summaries and
+binned histories) and writes under figures/fe/{profile}/.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from ..io import load_json, task, write_csv, write_json
+from ..reference import TABLE3_NOSES, UNITS, load_reference
+from .common import PAPER_STYLE, color, figure, save
+
+G0 = UNITS["g"]
+LABELS = {"double_ogive": "double ogive", "crh45": "CRH 4.5", "crh3": "CRH 3", "minimum_nstar": "minimum N*"}
+
+
+def _shots(paths):
+    """Summaries of the shots (JSON paths) as a frame, with the histories path of each."""
+    rows = [load_json(p) | {"json": str(p)} for p in paths]
+    return pd.DataFrame(rows)
+
+
+def _histories(json_path):
+    return pd.read_csv(json_path.replace(".json", "_histories.csv"))
+
+
+@task
+def fe_table3(inputs, outputs, params):
+    """Table 3 at the FE level: depth per cell, deviation from the paper's simulation, the nose ratios."""
+    refs = load_reference(inputs.reference)
+    shots = _shots(inputs.shots)
+    rows = []
+    for _, s in shots.sort_values(["velocity", "nose"]).iterrows():
+        v = int(round(s.velocity))
+        paper = refs[f"table3.sim.{v}.{s.nose}"].si
+        rows.append({"velocity_ms": v, "nose": s.nose, "fe_m": s.depth_m, "paper_sim_m": paper,
+                     "rel_dev_fe_vs_paper_sim_pct": 100 * (s.depth_m / paper - 1),
+                     "within_5pct_goal": abs(s.depth_m / paper - 1) <= 0.05, "time_to_rest_s": s.time_to_rest_s,
+                     "peak_deceleration_m_s2": s.peak_deceleration_m_s2, "eroded_mass_kg": s.eroded_mass_kg,
+                     "max_nose_pressure_pa": s.max_nose_pressure_pa, "energy_error_max": s.energy_error_max,
+                     "hourglass_over_internal": s.hourglass_over_internal, "element_steps": s.element_steps, "failure_strain": s.failure_strain, "element_size_m": s.element_size})
+    t = pd.DataFrame(rows)
+    ratios = []
+    for v, g in t.groupby("velocity_ms"):
+        d = g.set_index("nose")
+        for name, num, den in (("DO/CRH 4.5", "double_ogive", "crh45"), ("CRH 4.5/CRH 3", "crh45", "crh3"),
+                               ("DO/CRH 3", "double_ogive", "crh3")):
+            ours, paper = d.fe_m[num] / d.fe_m[den], d.paper_sim_m[num] / d.paper_sim_m[den]
+            ratios.append({"velocity_ms": v, "contrast": name, "fe_ratio": ours, "paper_sim_ratio": paper,
+                           "difference_points": 100 * (ours - paper), "within_2_points_goal": abs(ours - paper) <= 0.02,
+                           "fe_gain_m": d.fe_m[num] - d.fe_m[den], "paper_sim_gain_m": d.paper_sim_m[num] - d.paper_sim_m[den]})
+    write_csv(t, outputs.csv)
+    write_csv(pd.DataFrame(ratios), outputs.ratios)
+
+
+@task
+def fe_fig12(inputs, outputs, params):
+    """Fig 12 at the FE level: DO1 velocity and Pd/d against time, with the experiment."""
+    refs = load_reference(inputs.reference)
+    s = load_json(inputs.shot)
+    h = _histories(inputs.shot)
+    d = refs["table2.diameter"].si
+    data = pd.DataFrame({"t_ms": h.t * 1e3, "velocity": h.velocity, "pd_over_d": h.depth / d})
+    write_csv(data, outputs.csv)
+    fig, (ax,) = figure(1, 6.2, 4.2)
+    ax.plot(data.t_ms, data.pd_over_d, color="tab:green", label="Pd/d (ours, FE level)")
+    exp = refs["table2.dop"].si / d
+    ax.axhline(exp, color="black", ls="--", lw=1, label=f"experiment DO1: {refs['table2.dop'].value} m (Pd/d = {exp:.1f})")
+    ax.set(xlabel="t (ms)", ylabel="Pd/d", ylim=(0, 40), xlim=(0, max(18, data.t_ms.max() * 1.05)),
+           title=f"Fig 12 (FE): DO1, fs = {s['failure_strain']:.3g} calibrated on this shot, h = {s['element_size'] * 1e3:.3g} mm")
+    ax2 = ax.twinx()
+    ax2.plot(data.t_ms, data.velocity, color="tab:blue", label="velocity (ours)")
+    ax2.set(ylabel="velocity (m/s)", ylim=(0, 900))
+    ax.legend(loc="lower center", fontsize=7)
+    ax2.legend(loc="lower right", fontsize=7)
+    save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_fig13(inputs, outputs, params):
+    """Fig 13 at the FE level: the three projectiles (rigid analytic surfaces) over the target mesh near the nose."""
+    d = pd.read_csv(inputs.meshes)
+    h = float(d.element_size_m.iloc[0])
+    mr, mz = d[d.kind == "mesh_r"].r, d[d.kind == "mesh_z"].z
+    fig, axes = figure(3, 3.0, 4.6)
+    rows = []
+    for ax, (name, o) in zip(axes, d[d.kind == "outline"].groupby("nose", sort=False)):
+        for rr in mr[mr <= 0.3]:
+            ax.plot([rr, rr], [0, 0.45], color="0.75", lw=0.4)
+        for zz in mz[mz <= 0.45]:
+            ax.plot([0, 0.3], [zz, zz], color="0.75", lw=0.4)
+        ax.fill_betweenx(o.z, 0, o.r, color=color(name), alpha=0.5)
+        ax.plot(o.r, o.z, color=color(name))
+        ax.set(xlim=(0, 0.3), ylim=(-0.5, 0.45), aspect="equal", xlabel="r (m)", title=LABELS[name])
+        ax.invert_yaxis()
+        rows.append({"nose": name, "nose_length_m": o.nose_length_m.iloc[0], "element_size_m": h,
+                     "elements_across_radius": o.r.max() / h, "target_elements": int(d.target_elements.iloc[0])})
+    axes[0].set_ylabel("z (m), target below 0 (tip at the surface)")
+    fig.suptitle(f"Fig 13 (FE): rigid projectiles over the target mesh ({params.profile} profile, h = {h * 1e3:.3g} mm)",
+                 fontsize=9)
+    write_csv(pd.DataFrame(rows), outputs.csv)
+    save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_fig14(inputs, outputs, params):
+    """Fig 14 at the FE level: filtered deceleration histories (declared filter) and the peak against the cut-off."""
+    refs = load_reference(inputs.reference)
+    shots = _shots(inputs.shots)
+    vs = sorted(shots.velocity.unique())
+    fig, axes = figure(len(vs), 3.6, 3.6)
+    rows, peaks = [], []
+    for ax, v in zip(axes, vs):
+        for _, s in shots[shots.velocity == v].iterrows():
+            h = _histories(s.json)
+            g_ = h.deceleration / G0
+            # the resistance acts only while the projectile moves: the trace drops to zero at rest
+            ax.plot(np.append(h.t * 1e3, s.time_to_rest_s * 1e3), np.append(g_, 0.0), color=color(s.nose), lw=1,
+                    label=LABELS[s.nose])
+            rows += [{"velocity": v, "nose": s.nose, "t_ms": a, "deceleration_g": b}
+                     for a, b in zip(h.t.to_numpy()[::10] * 1e3, g_.to_numpy()[::10])]
+            for fc, peak in s.peak_deceleration_by_cutoff.items():
+                peaks.append({"velocity": v, "nose": s.nose, "cutoff_hz": float(fc), "peak_g": peak / G0})
+            peaks.append({"velocity": v, "nose": s.nose, "cutoff_hz": math.inf,
+                          "peak_g": s.peak_deceleration_unfiltered_bins / G0})
+        gmax, tmax = refs[f"fig14.g_axis_max.{v:.0f}"].value, refs[f"fig14.t_axis_max.{v:.0f}"].value
+        ax.plot([0, tmax, tmax], [gmax, gmax, 0], color="black", lw=0.8, ls=":", label="paper's axes")
+        ax.set(xlabel="t (ms)", title=f"{v:.0f} m/s", ylim=(0, None))
+        ax.legend(fontsize=6)
+    axes[0].set_ylabel(f"deceleration (g), low-pass {shots.cutoff_hz.iloc[0] / 1e3:g} kHz")
+    write_csv(pd.DataFrame(rows), outputs.csv)
+    save(fig, outputs.png, params.dpi)
+    p = pd.DataFrame(peaks)
+    write_csv(p, outputs.cutoff_csv)
+    fig, (ax,) = figure(1, 5.6, 4.0)
+    for (v, nose), g_ in p[np.isfinite(p.cutoff_hz)].groupby(["velocity", "nose"]):
+        ax.plot(g_.cutoff_hz / 1e3, g_.peak_g, color=color(nose), marker="o", ms=3, lw=0.8,
+                alpha=0.4 + 0.6 * (v - min(vs)) / max(1, max(vs) - min(vs)), label=f"{LABELS[nose]} {v:.0f} m/s")
+    ax.axvline(shots.cutoff_hz.iloc[0] / 1e3, color="black", lw=0.8, ls="--", label="declared cut-off")
+    ax.set(xscale="log", xlabel="low-pass cut-off (kHz)", ylabel="peak deceleration (g)",
+           title="Peak deceleration against the filter's cut-off (FE level)")
+    ax.legend(fontsize=5, ncol=2)
+    save(fig, outputs.cutoff_png, params.dpi)
+
+
+@task
+def fe_fig15(inputs, outputs, params):
+    """Fig 15 at the FE level: Pd/d against striking velocity for four noses, with the paper's simulated points."""
+    refs = load_reference(inputs.reference)
+    shots = _shots(inputs.shots)
+    d = refs["table2.diameter"].si
+    data = shots[["nose", "velocity", "depth_m"]].assign(pd_over_d=shots.depth_m / d).sort_values(["nose", "velocity"])
+    write_csv(data, outputs.csv)
+    fig, (ax,) = figure(1, 6.2, 4.4)
+    for nose, g in data.groupby("nose"):
+        ax.plot(g.velocity, g.pd_over_d, color=color(nose), marker="o", ms=3, label=f"{LABELS[nose]} (ours, FE)")
+    for nose in TABLE3_NOSES:
+        pts = [(v, refs[f"table3.sim.{v}.{nose}"].si / d) for v in (500, 800, 1000, 1200)]
+        ax.plot(*zip(*pts), **{**PAPER_STYLE, "color": color(nose)}, label=f"{LABELS[nose]} (paper's simulation, Table 3)")
+    ax.plot([refs["table2.velocity"].si], [refs["table2.dop"].si / d], marker="*", ms=10, color="black", ls="none",
+            label="experiment DO1")
+    ax.set(xlabel="striking velocity (m/s)", ylabel="Pd/d", xlim=(400, 1400), ylim=(0, 90),
+           title="Fig 15 (FE level): failure strain calibrated on DO1")
+    ax.legend(fontsize=6)
+    save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_do1_fields(inputs, outputs, params):
+    """DO1 at rest: crater and tunnel profile, damage and eroded elements (initial positions), eroded mass."""
+    s = load_json(inputs.shot)
+    f = pd.read_csv(inputs.fields)
+    d = 0.14
+    live = f[f.state.isin((1, 4))]  # material present (4: retired behind the moving window, fields as at retirement)
+    rows = []
+    for z0, g in f.groupby(f.z0.round(6)):
+        lv = g[g.state.isin((1, 4))]
+        rows.append({"z0": z0, "tunnel_radius_m": lv.r.min() if len(lv) else math.nan,
+                     "eroded_to_radius0_m": g[g.state == 0].r0.max() if (g.state == 0).any() else 0.0})
+    prof = pd.DataFrame(rows)
+    write_csv(prof, outputs.csv)
+    fig, axes = figure(3, 3.4, 6.0)
+    ax = axes[0]
+    ax.plot(prof.tunnel_radius_m / d, prof.z0 / d, color="tab:green", label="tunnel wall now (live material)")
+    ax.plot(prof.eroded_to_radius0_m / d, prof.z0 / d, color="tab:red", lw=0.8, label="eroded out to (initial r)")
+    ax.axvline(0.5, color="black", ls=":", lw=0.8, label="shank radius")
+    ax.set(xlabel="r/d", ylabel="z/d (initial depth)", xlim=(0, 3), title="crater and tunnel")
+    ax.invert_yaxis()
+    ax.legend(fontsize=6)
+    for ax, key, title in ((axes[1], "damage", "HJC damage D"), (axes[2], "eps_p", "equivalent plastic strain")):
+        sc = ax.scatter(live.r0 / d, live.z0 / d, c=live[key], s=1.5, cmap="viridis", vmin=0,
+                        vmax=1.0 if key == "damage" else max(1e-9, s["failure_strain"] or 1.0), rasterized=True)
+        er = f[f.state == 0]
+        ax.scatter(er.r0 / d, er.z0 / d, color="tab:red", s=1.0, label=f"eroded ({s['eroded_mass_kg']:.0f} kg)", rasterized=True)
+        ax.set(xlabel="r0/d", xlim=(0, 4), title=title)
+        ax.invert_yaxis()
+        ax.legend(fontsize=6, loc="lower right")
+        fig.colorbar(sc, ax=ax, shrink=0.6)
+    fig.suptitle(f"DO1 at rest (FE level, depth {s['depth_m']:.2f} m): fields at the initial element positions "
+                 f"(rows behind the moving window as they left it)", fontsize=9)
+    save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_mesh_study(inputs, outputs, params):
+    """Failure strain calibrated on DO1 at three element sizes: fs, depth, peak deceleration, wall time per size."""
+    rows = []
+    for p in inputs.calibrations:
+        c = load_json(p)
+        best = min(c["runs"], key=lambda r: abs(r["depth_m"] - c["data"]["measured_depth"]))
+        rows.append({"element_size_m": c["element_size"], "elements_across_radius": c["elements_across_radius"],
+                     "failure_strain": c["fs"], "depth_m": best["depth_m"], "residual_m": c["residual_m"],
+                     "peak_deceleration_m_s2": best.get("peak_deceleration_m_s2", math.nan),
+                     "wall_time_per_run_s": best["wall_time_s"], "runs": len(c["runs"]),
+                     "calibration_wall_time_s": c["wall_time_s"], "converged": c["converged"]})
+    t = pd.DataFrame(rows).sort_values("element_size_m", ascending=False)
+    write_csv(t, outputs.csv)
+    fig, axes = figure(2, 3.8, 3.4)
+    axes[0].plot(t.elements_across_radius, t.failure_strain, marker="o", color="tab:green", label="ours (2-D, calibrated on DO1)")
+    axes[0].axhline(0.38, color="black", ls="--", lw=0.8, label="paper's fs (its 3-D mesh)")
+    axes[0].set(xlabel="elements across the shank radius", ylabel="failure strain fs", title="calibrated fs per mesh")
+    axes[0].legend(fontsize=6)
+    axes[1].plot(t.elements_across_radius, t.wall_time_per_run_s, marker="o", color="tab:blue")
+    axes[1].set(xlabel="elements across the shank radius", ylabel="wall time of one DO1 run (s)", yscale="log",
+                title="cost per DO1 run")
+    save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_summary(inputs, outputs, params):
+    """Audit and checks over every FE shot of a profile: energy errors, hourglass share, nose pressure, rear face."""
+    shots = _shots(inputs.shots)
+    do1, block = load_json(inputs.do1), load_json(inputs.block)
+    cal = load_json(inputs.cal)
+    out = {"profile": params.profile, "element_size_m": cal["element_size"], "failure_strain": cal["fs"],
+           "calibration_residual_m": cal["residual_m"], "shots": int(len(shots)),
+           "energy_error_max": float(shots.energy_error_max.abs().max()),
+           "hourglass_over_internal_max": float(shots.hourglass_over_internal.max()),
+           "momentum_error_max": float(shots.momentum_error_final.abs().max()),
+           "max_nose_pressure_pa": float(shots.max_nose_pressure_pa.max()),
+           "max_nose_pressure_shot": shots.loc[shots.max_nose_pressure_pa.idxmax(), ["nose", "velocity"]].to_dict(),
+           "do1_depth_semi_infinite_m": do1["depth_m"], "do1_depth_block_m": block["depth_m"],
+           "rear_face_effect_m": block["depth_m"] - do1["depth_m"],
+           "do1_eroded_mass_kg": do1["eroded_mass_kg"], "do1_wall_time_s": do1["wall_time_s"],
+           "do1_element_steps": do1["element_steps"], "do1_status": do1["status"], "block_status": block["status"]}
+    write_json(out, outputs.json)
+
+
+@task
+def fe_diff(inputs, outputs, params):
+    """The FE level's rows of the diff (Table 3 cells and increments, 1200 m/s gains, Fig 14, DO1, fs) and a summary."""
+    from .. import diff as D
+    refs = load_reference(inputs.reference)
+    t3 = pd.read_csv(inputs.table3).to_dict("records")
+    ratios = pd.read_csv(inputs.ratios).to_dict("records")
+    do1, cal = load_json(inputs.do1), load_json(inputs.cal)
+    rows = D.fe_rows(refs, t3, ratios, do1["depth_m"], cal["fs"], cal["element_size"])
+    frame = pd.DataFrame([r.__dict__ for r in rows], columns=list(D.COLUMNS))
+    write_csv(frame, outputs.csv)
+    counts = ", ".join(f"{s} {int((frame.status == s).sum())}" for s in D.STATUSES)
+    lines = [f"# FE level ({params.profile} profile, h = {cal['element_size'] * 1e3:.3g} mm, fs = {cal['fs']:.4g} "
+             f"calibrated on DO1)", "", f"Status counts: {counts}", "",
+             "| item | quantity | case | paper | ours | status |", "|---|---|---|---|---|---|"]
+    lines += [f"| {r.item} | {r.quantity} | {r.case} | {r.paper:.4g} | {r.ours:.4g} | {r.status} |" for r in rows]
+    from ..io import write_text
+    write_text(outputs.summary, "\n".join(lines) + "\n")

@@ -1,0 +1,53 @@
+"""Keep numba's on-disk caches consistent across modules.
+
+numba invalidates a cached function when its own file changes, not when a
+jitted function it calls (and inlines) from another file changes: the FE
+kernels inline ``hjc.update_point``, the FE time loop inlines the kernels, the
+cavity solver inlines ``hjc``'s EOS and strength. Before any of these modules
+is imported, ``check()`` fingerprints the sources of every module with
+compiled kernels and, when the fingerprint differs from the one recorded with
+the caches, deletes the package's numba cache files (they are rebuilt on the
+next call).
+"""
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parent
+KERNEL_SOURCES = ("hjc.py", "cavity.py", "fe/kernels.py", "fe/solver.py", "fe/materials.py")
+STAMP = "numba_sources.sha256"
+
+
+def fingerprint() -> str:
+    h = hashlib.sha256()
+    for rel in KERNEL_SOURCES:
+        h.update(rel.encode())
+        h.update((PACKAGE / rel).read_bytes())
+    return h.hexdigest()
+
+
+def check():
+    """Delete stale numba cache files of the package (returns how many were deleted)."""
+    caches = [PACKAGE / "__pycache__", PACKAGE / "fe" / "__pycache__"]
+    want = fingerprint()
+    stamp = PACKAGE / "__pycache__" / STAMP
+    try:
+        if stamp.read_text() == want:
+            return 0
+    except OSError:
+        pass
+    removed = 0
+    for folder in caches:
+        for f in list(folder.glob("*.nbi")) + list(folder.glob("*.nbc")):
+            try:
+                f.unlink()
+                removed += 1
+            except OSError:
+                pass
+    try:
+        stamp.parent.mkdir(exist_ok=True)
+        stamp.write_text(want)
+    except OSError:
+        pass
+    return removed

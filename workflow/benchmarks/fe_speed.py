@@ -1,0 +1,120 @@
+"""Speed of the finite-element level: time per element-step against this machine's memory-bandwidth floor.
+
+Prints the machine, a STREAM-triad bandwidth measured in this run (numba,
+parallel, arrays far larger than the caches), the bytes one element-step
+moves (every array the step reads or writes, once: a floor that assumes
+perfect caching), the floor (bytes / bandwidth), and the measured time per
+element-step of one full explicit step (node pass, move, element pass; no
+contact) on a DO1-like HJC target in motion, as a ratio to the floor.
+Optionally (--do1) the wall time of the DO1 shot at the default mesh with
+the calibrated failure strain of results/fe/full/.
+
+    python workflow/benchmarks/fe_speed.py [--threads 2] [--size 0.00875] [--do1]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import time
+from pathlib import Path
+
+import numba
+import numpy as np
+from numba import njit, prange
+
+from penetration.fe import kernels as K
+from penetration.fe.mesh import MeshSpec, build
+from penetration.fe.solver import Controls, Model
+from penetration.hjc import HJC
+
+
+@njit(parallel=True, cache=True)
+def _triad(a, b, c, s):
+    for i in prange(a.size):
+        a[i] = b[i] + s * c[i]
+
+
+def stream_triad(n=40_000_000, repeat=8):
+    a, b, c = np.zeros(n), np.random.rand(n), np.random.rand(n)
+    _triad(a, b, c, 3.0)
+    best = min(_timed(lambda: _triad(a, b, c, 3.0)) for _ in range(repeat))
+    return 3 * 8 * n / best  # bytes/s (STREAM's convention: two reads and one write per element)
+
+
+def _timed(fn):
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def step_bytes(m: Model):
+    """Bytes one explicit step reads and writes, each array once (element pass, node pass, move)."""
+    nodes = [m.r, m.z, m.vr, m.vz]
+    element = 2 * m.E.nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
+    node = m.F.nbytes + m.alive.nbytes + 2 * (m.vr.nbytes + m.vz.nbytes) + m.mass.nbytes + m.nstate.nbytes + m.fix.nbytes \
+        + m.dash.nbytes
+    move = 2 * (m.r.nbytes + m.z.nbytes) + m.vr.nbytes + m.vz.nbytes + m.nstate.nbytes
+    return element + node + move
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--threads", type=int, default=2, help="numba threads (default 2)")
+    ap.add_argument("--size", type=float, default=0.00875, help="element size in m (default 0.00875: 8 per shank radius)")
+    ap.add_argument("--steps", type=int, default=200, help="steps timed (default 200)")
+    ap.add_argument("--do1", action="store_true", help="also time the DO1 shot at the default mesh (needs results/fe/full)")
+    args = ap.parse_args()
+    numba.set_num_threads(args.threads)
+    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}, "
+          f"numba {numba.__version__}, threads {numba.get_num_threads()}")
+    bw = stream_triad()
+    print(f"STREAM triad: {bw / 1e9:.1f} GB/s")
+    # a DO1-like target (the core and graded far field of the default mesh, 2.5 m deep) in motion
+    m = Model(build(MeshSpec(args.size, 0.21, 2.5, 1.2, 2.5, 1.1)), HJC(), Controls())
+    vr0, vz0 = np.zeros_like(m.vr), np.zeros_like(m.vz)
+    base = (m.r.copy(), m.z.copy(), m.E.copy())
+    dt = 0.5 * m.dt
+    m.ctl[K.C_DT] = dt
+
+    def step():
+        K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash,
+                    m.zp, m.zs, m.rowbnd)
+        K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt)
+        K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
+                       m.rowhg, m.rowero, m.rowfail)
+
+    ne = m.grid.elements
+    b = step_bytes(m) / ne
+    floor = b / bw
+    print(f"mesh: {ne} elements (h = {args.size * 1e3:.3g} mm); bytes per element-step {b:.0f}; floor {floor * 1e9:.1f} ns")
+    # two states: elastic (velocities of 0.05 m/s: no element yields) and plastic (20 m/s: every element yields)
+    for label, amp in (("elastic", 0.05), ("plastic", 20.0)):
+        m.r[:], m.z[:], m.E[:] = base[0], base[1], base[2]
+        rng = np.random.default_rng(0)
+        m.vz[:] = amp * rng.standard_normal(m.vz.size)
+        m.vr[:] = amp * rng.standard_normal(m.vr.size)
+        m.vr[m.on_axis] = 0.0
+        step()
+        t = _timed(lambda: [step() for _ in range(args.steps)]) / args.steps
+        per = t / ne
+        yielded = float((m.E[K.EPSP] > 0).mean())
+        print(f"{label} ({yielded:.0%} of the elements yielded): {per * 1e9:.1f} ns per element-step = "
+              f"{per / floor:.2f} x the floor (targets: <= 30 ns and <= 2 x)")
+    if args.do1:
+        from penetration.fe.shot import Settings, TargetSpec, run_shot
+        from penetration.fe_level import with_failure_strain
+        from penetration.io import read_inference
+        cal = json.loads(Path(f"results/fe/full/calibration_h{args.size}.json").read_text())
+        nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]
+        r = run_shot(nose, 81.1, 835.0, HJC(), with_failure_strain(Settings(element_size=args.size), cal["fs"]),
+                     TargetSpec(), expected_depth=6.6)
+        s = r.summary()
+        print(f"DO1 at h = {args.size * 1e3:.3g} mm, fs = {cal['fs']:.4g}: depth {r.depth:.3f} m, wall {r.wall_time:.1f} s "
+              f"(target 60 s: {r.wall_time / 60:.2f} of it), {r.steps} steps, {r.elements} elements in the mesh, "
+              f"{s['element_steps'] / r.wall_time / 1e6:.1f} M mesh element-steps/s")
+
+
+if __name__ == "__main__":
+    main()

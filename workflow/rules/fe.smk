@@ -1,0 +1,171 @@
+# The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles);
+# one job per shot (FE runs use both cores: threads 2).
+
+FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
+
+
+def fe_shots(scene):
+    return [f"results/fe/{{profile}}/{scene}/{nose}_{v}.json" for nose, v in FE_SCENES[scene]]
+
+
+def fe_histories(scene):
+    return [f"results/fe/{{profile}}/{scene}/{nose}_{v}_histories.csv" for nose, v in FE_SCENES[scene]]
+
+
+rule calibrate_fe_do1:
+    input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json", reference=config["reference"],
+    output: json="results/fe/{profile}/calibration_h{size}.json",
+    params: cfg=config["fe"], hjc=config["cavity"], shot=config["calibration"]["do1"],
+            profile=lambda w: w.profile, size=lambda w: w.size,
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/calibrate_fe_do1_{profile}_h{size}.tsv"
+    log: "results/logs/calibrate_fe_do1_{profile}_h{size}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_shot:
+    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
+           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/{scene}.yaml", schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/{scene}/{nose}_{velocity}.json",
+            histories="results/fe/{profile}/{scene}/{nose}_{velocity}_histories.csv",
+            fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
+    params: cfg=config["fe"], hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
+            velocity=lambda w: w.velocity,
+    threads: 2
+    resources: mem_mb=2000, runtime=30
+    benchmark: "results/benchmarks/fe_shot_{profile}_{scene}_{nose}_{velocity}.tsv"
+    log: "results/logs/fe_shot_{profile}_{scene}_{nose}_{velocity}.log",
+    script: "../scripts/run_task.py"
+
+
+def fe_out(name):
+    return f"figures/fe/{{profile}}/{name}"
+
+
+FE_FIGURE = dict(threads=1)
+
+
+rule fe_table3:
+    input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("table3"),
+    output: csv=fe_out("table3.csv"), ratios=fe_out("table3_ratios.csv"),
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_table3_{profile}.tsv"
+    log: "results/logs/fe_table3_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_fig12:
+    input: **task("figures.fe_level"), reference=config["reference"], shot="results/fe/{profile}/do1/double_ogive_835.json",
+           histories="results/fe/{profile}/do1/double_ogive_835_histories.csv",
+    output: png=fe_out("fig12.png"), csv=fe_out("fig12.csv"),
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_fig12_{profile}.tsv"
+    log: "results/logs/fe_fig12_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_meshes:
+    input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json",
+    output: csv="results/fe/{profile}/meshes.csv",
+    params: cfg=config["fe"], profile=lambda w: w.profile,
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_meshes_{profile}.tsv"
+    log: "results/logs/fe_meshes_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_fig13:
+    input: **task("figures.fe_level"), meshes="results/fe/{profile}/meshes.csv",
+    output: png=fe_out("fig13.png"), csv=fe_out("fig13.csv"),
+    params: dpi=config["figures"]["dpi"], profile=lambda w: w.profile,
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_fig13_{profile}.tsv"
+    log: "results/logs/fe_fig13_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_fig14:
+    input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("table3"), histories=fe_histories("table3"),
+    output: png=fe_out("fig14.png"), csv=fe_out("fig14.csv"), cutoff_png=fe_out("fig14_cutoff.png"),
+            cutoff_csv=fe_out("fig14_cutoff.csv"),
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_fig14_{profile}.tsv"
+    log: "results/logs/fe_fig14_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_fig15:
+    input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("fig15"),
+    output: png=fe_out("fig15.png"), csv=fe_out("fig15.csv"),
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_fig15_{profile}.tsv"
+    log: "results/logs/fe_fig15_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_do1_fields:
+    input: **task("figures.fe_level"), shot="results/fe/{profile}/do1/double_ogive_835.json",
+           fields="results/fe/{profile}/do1/double_ogive_835_fields.csv",
+    output: png=fe_out("do1_fields.png"), csv=fe_out("do1_profile.csv"),
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_do1_fields_{profile}.tsv"
+    log: "results/logs/fe_do1_fields_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_mesh_study:
+    input: **task("figures.fe_level"),
+           calibrations=lambda w: [f"results/fe/{w.profile}/calibration_h{h}.json" for h in config["fe"]["profiles"][w.profile]["mesh_study"]],
+    output: png="figures/timing/fe_mesh_study_{profile}.png", csv="figures/timing/fe_mesh_study_{profile}.csv",
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_mesh_study_{profile}.tsv"
+    log: "results/logs/fe_mesh_study_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_summary:
+    input: **task("figures.fe_level"), shots=fe_shots("table3") + fe_shots("fig15") + fe_shots("do1"),
+           do1="results/fe/{profile}/do1/double_ogive_835.json", block="results/fe/{profile}/do1_block/double_ogive_835.json",
+           cal=lambda w: fe_calibration(w.profile),
+    output: json=fe_out("summary.json"),
+    params: profile=lambda w: w.profile,
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_summary_{profile}.tsv"
+    log: "results/logs/fe_summary_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+FE_OUTPUTS = ["table3.csv", "table3_ratios.csv", "fig12.png", "fig12.csv", "fig13.png", "fig13.csv", "fig14.png",
+              "fig14.csv", "fig14_cutoff.png", "fig14_cutoff.csv", "fig15.png", "fig15.csv", "do1_fields.png",
+              "do1_profile.csv", "summary.json"]
+
+
+rule fe_diff:
+    input: **task("figures.fe_level"), reference=config["reference"], table3=fe_out("table3.csv"),
+           ratios=fe_out("table3_ratios.csv"), do1="results/fe/{profile}/do1/double_ogive_835.json",
+           cal=lambda w: fe_calibration(w.profile),
+    output: csv=fe_out("diff.csv"), summary=fe_out("diff_summary.md"),
+    params: profile=lambda w: w.profile,
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_diff_{profile}.tsv"
+    log: "results/logs/fe_diff_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+FE_OUTPUTS += ["diff.csv", "diff_summary.md"]
