@@ -77,6 +77,7 @@ class Projectile:
     Zt: float = 0.0
     V: float = 0.0
     friction: float = 0.0
+    rest_velocity: float = 0.1  # m/s: at rest once V falls to this (a projectile held by the target creeps towards 0)
 
 
 class Unstable(RuntimeError):
@@ -337,7 +338,7 @@ def _advance(nr, nz, j0, j1, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, a
              acc, presc_i, presc_v, load_i, load_f):
     """Steps until t_stop, the projectile at rest, an erosion (bookkeeping in Python) or a failure.
 
-    proj = [Zt, V, M, friction, active, exit depth of the tail, stop at rest]; hist rows (t, Zt, V, impulse/dt, contacts, max nodal force) from k0;
+    proj = [Zt, V, M, friction, active, exit depth of the tail, stop at rest, rest velocity]; hist rows (t, Zt, V, impulse/dt, contacts, max nodal force) from k0;
     acc = [hourglass work, boundary work, contact loss, eroded IE, work of prescribed velocities,
     axial impulse of the boundary dashpots];
     presc_i, presc_v: nodes whose velocity (vr, vz) is prescribed, with the values;
@@ -396,7 +397,7 @@ def _advance(nr, nz, j0, j1, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, a
         for jj in range(nz):
             if rowero[jj] != 0.0:
                 return 1, dt, t, k
-        if proj[6] > 0.5 and proj[1] <= 0.0:
+        if proj[6] > 0.5 and proj[1] <= proj[7]:
             return 2, dt, t, k
         if proj[4] > 0.5 and proj[0] - zeta[-1] > proj[5]:
             return 5, dt, t, k
@@ -435,11 +436,11 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
     vr0, vz0 = np.zeros(nn), np.zeros(nn)
     if projectile is not None:
         proj = np.array([projectile.Zt, projectile.V, projectile.mass, projectile.friction, 1.0, model.z.max(),
-                         float(projectile.V > 0)])
+                         float(projectile.V > 0), projectile.rest_velocity])
         zeta, rho = np.ascontiguousarray(projectile.zeta, float), np.ascontiguousarray(projectile.rho, float)
         rho_max = float(rho.max())
     else:
-        proj = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0])
+        proj = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0])
         zeta, rho, rho_max = np.array([0.0, 1.0]), np.array([0.0, 0.0]), 0.0
     cap = 200_000
     hist = np.zeros((6, cap))
