@@ -228,3 +228,48 @@ def test_taylor_bar_copper_against_published_solutions():
     assert m.E[K.EPSP].max() > 2.5
     last = res.audit[-1]
     assert abs(last["energy_error"]) < 0.01 and last["hourglass"] < 0.10 * last["internal"]
+
+
+def test_hourglass_control_stays_active_in_fully_damaged_material():
+    """An hourglass velocity mode in fully damaged HJC (no shear strength left) is resisted: the force opposes the
+    mode and its work is positive; a linear field in the same elements gets no hourglass force."""
+    g = Grid.tensor(np.linspace(0.5, 0.6, 3), np.linspace(0.0, 0.1, 3))
+    m = Model(g, HJC(), Controls(hourglass=0.1))
+    m.E[K.DMG] = 1.0
+    h = np.array([1.0, -1.0, 1.0, -1.0])
+    m.vz[:] = 0.0
+    for e, nodes in enumerate(g.connectivity()):
+        m.vz[nodes] += 0.25 * h  # superposed hourglass patterns (a checkerboard on the nodes)
+    _pass(m, 1e-7)
+    fr, fz = _residual(m)
+    assert m.rowhg.sum() > 0
+    assert np.dot(fz, m.vz) > 0  # internal force in the direction of the mode: the node update opposes it
+    m2 = Model(g, HJC(), Controls(hourglass=0.1))
+    m2.E[K.DMG] = 1.0
+    m2.vz[:] = 0.1 * m2.z
+    _pass(m2, 1e-7)
+    assert m2.rowhg.sum() < 1e-12 * m.rowhg.sum()
+
+
+def test_failure_strain_calibration_finds_the_root_of_a_noisy_decreasing_depth(monkeypatch):
+    """The bracketing secant in log fs stops within tol of the target despite a 0.3 % noise (a stand-in for the FE
+    run: depth = 5.1 (1.02/fs)^0.8 (1 + noise)); a bracket that misses the target is refused."""
+    from penetration import fe_level
+    from penetration.fe.shot import Settings
+    rng = np.random.default_rng(1)
+
+    class Run:
+        def __init__(self, fs):
+            self.depth = 5.1 * (1.02 / fs) ** 0.8 * (1 + 0.003 * rng.standard_normal())
+            self.wall_time, self.status, self.peak_deceleration, self.elements, self.steps = 1.0, "rest", 1.0, 1, 1
+
+        def summary(self):
+            return {"energy_error_max": 0.0}
+
+    monkeypatch.setattr(fe_level, "run_shot", lambda nose, m, v, mat, settings, *a, **k: Run(settings.controls.erosion_value))
+    fit = fe_level.calibrate_failure_strain(None, 81.1, 835.0, 5.1, None, Settings(), log=None, tol_m=0.02)
+    assert fit["converged"] and abs(fit["residual_m"]) <= 0.02
+    assert fit["fs"] == pytest.approx(1.02, rel=0.02)
+    assert len(fit["runs"]) <= 10
+    with pytest.raises(ValueError, match="no failure strain"):
+        fe_level.calibrate_failure_strain(None, 81.1, 835.0, 5.1, None, Settings(), bracket=(1.5, 3.0), log=None)

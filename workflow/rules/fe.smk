@@ -137,10 +137,23 @@ rule fe_mesh_study:
     script: "../scripts/run_task.py"
 
 
+rule fe_nose_pressure:
+    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"], cal=lambda w: fe_calibration(w.profile),
+           scene="workflow/scenes/fe/fig15.yaml", schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/nose_pressure.json",
+    params: cfg=config["fe"], hjc=config["cavity"], profile=lambda w: w.profile,
+            steel_yield=config["fe_checks"]["steel_yield_pa"],
+    threads: 2
+    resources: mem_mb=2000, runtime=10
+    benchmark: "results/benchmarks/fe_nose_pressure_{profile}.tsv"
+    log: "results/logs/fe_nose_pressure_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
 rule fe_summary:
     input: **task("figures.fe_level"), shots=fe_shots("table3") + fe_shots("fig15") + fe_shots("do1"),
            do1="results/fe/{profile}/do1/double_ogive_835.json", block="results/fe/{profile}/do1_block/double_ogive_835.json",
-           cal=lambda w: fe_calibration(w.profile),
+           cal=lambda w: fe_calibration(w.profile), pressure="results/fe/{profile}/nose_pressure.json",
     output: json=fe_out("summary.json"),
     params: profile=lambda w: w.profile,
     threads: 1
@@ -169,3 +182,17 @@ rule fe_diff:
 
 
 FE_OUTPUTS += ["diff.csv", "diff_summary.md"]
+
+
+rule fe_contrasts:
+    input: **task("figures.fe_level"), shots=fe_shots("fig15"), reference=config["reference"],
+    output: png=fe_out("contrasts.png"), csv=fe_out("contrasts.csv"),
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_contrasts_{profile}.tsv"
+    log: "results/logs/fe_contrasts_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+FE_OUTPUTS += ["contrasts.png", "contrasts.csv"]

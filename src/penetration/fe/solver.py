@@ -504,6 +504,8 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
             next_out = model.t
             row = record()
             if callback is not None:
+                if projectile is not None:  # the callback sees the projectile's current state
+                    projectile.Zt, projectile.V = float(proj[0]), float(proj[1])
                 callback(model, model.t)
             if abs(row["energy_error"]) > c.max_energy_error:
                 status = "failed"

@@ -41,7 +41,7 @@ def fe_table3(inputs, outputs, params):
                      "rel_dev_fe_vs_paper_sim_pct": 100 * (s.depth_m / paper - 1),
                      "within_5pct_goal": abs(s.depth_m / paper - 1) <= 0.05, "time_to_rest_s": s.time_to_rest_s,
                      "peak_deceleration_m_s2": s.peak_deceleration_m_s2, "eroded_mass_kg": s.eroded_mass_kg,
-                     "max_nose_pressure_pa": s.max_nose_pressure_pa, "energy_error_max": s.energy_error_max,
+                     "energy_error_max": s.energy_error_max,
                      "hourglass_over_internal": s.hourglass_over_internal, "element_steps": s.element_steps, "failure_strain": s.failure_strain, "element_size_m": s.element_size})
     t = pd.DataFrame(rows)
     ratios = []
@@ -241,8 +241,7 @@ def fe_summary(inputs, outputs, params):
            "energy_error_max": float(shots.energy_error_max.abs().max()),
            "hourglass_over_internal_max": float(shots.hourglass_over_internal.max()),
            "momentum_error_max": float(shots.momentum_error_final.abs().max()),
-           "max_nose_pressure_pa": float(shots.max_nose_pressure_pa.max()),
-           "max_nose_pressure_shot": shots.loc[shots.max_nose_pressure_pa.idxmax(), ["nose", "velocity"]].to_dict(),
+           "nose_pressure": load_json(inputs.pressure),
            "do1_depth_semi_infinite_m": do1["depth_m"], "do1_depth_block_m": block["depth_m"],
            "rear_face_effect_m": block["depth_m"] - do1["depth_m"],
            "do1_eroded_mass_kg": do1["eroded_mass_kg"], "do1_wall_time_s": do1["wall_time_s"],
@@ -268,3 +267,39 @@ def fe_diff(inputs, outputs, params):
     lines += [f"| {r.item} | {r.quantity} | {r.case} | {r.paper:.4g} | {r.ours:.4g} | {r.status} |" for r in rows]
     from ..io import write_text
     write_text(outputs.summary, "\n".join(lines) + "\n")
+
+
+@task
+def fe_contrasts(inputs, outputs, params):
+    """Nose contrasts at the FE level over Fig 15's sweep: depth ratios and gains of each pair of noses."""
+    shots = _shots(inputs.shots)
+    d = shots.pivot_table(index="velocity", columns="nose", values="depth_m")
+    rows = []
+    for name, num, den in (("DO/CRH 4.5", "double_ogive", "crh45"), ("DO/CRH 3", "double_ogive", "crh3"),
+                           ("CRH 4.5/CRH 3", "crh45", "crh3"), ("minimum N*/DO", "minimum_nstar", "double_ogive")):
+        for v, row in d.iterrows():
+            rows.append({"contrast": name, "velocity": v, "ratio": row[num] / row[den], "gain_m": row[num] - row[den]})
+    t = pd.DataFrame(rows)
+    write_csv(t, outputs.csv)
+    fig, axes = figure(2, 3.9, 3.4)
+    for name, g in t.groupby("contrast", sort=False):
+        axes[0].plot(g.velocity, 100 * (g.ratio - 1), marker="o", ms=3, label=name)
+        axes[1].plot(g.velocity, g.gain_m, marker="o", ms=3, label=name)
+    refs = load_reference(inputs.reference)
+    colors = {name: line.get_color() for name, line in zip(t.contrast.unique(), axes[0].get_lines())}
+    for name, num, den in (("DO/CRH 4.5", "double_ogive", "crh45"), ("DO/CRH 3", "double_ogive", "crh3"),
+                           ("CRH 4.5/CRH 3", "crh45", "crh3")):
+        pts = [(v, refs[f"table3.sim.{v}.{num}"].si, refs[f"table3.sim.{v}.{den}"].si) for v in (500, 800, 1000, 1200)]
+        axes[0].plot([p[0] for p in pts], [100 * (p[1] / p[2] - 1) for p in pts], **{**PAPER_STYLE, "color": colors[name]},
+                     label=f"{name} (paper's simulation)")
+        axes[1].plot([p[0] for p in pts], [p[1] - p[2] for p in pts], **{**PAPER_STYLE, "color": colors[name]})
+    for key, name in (("text.gain_1200_crh45", "DO/CRH 4.5"), ("text.gain_1200_crh3", "DO/CRH 3")):
+        axes[1].plot([1200], [refs[key].si], marker="*", ms=9, ls="none", color=colors[name],
+                     label=f"text: {refs[key].value} m ({name}, 1200 m/s)")
+    axes[0].axhline(10, color="black", ls=":", lw=0.8, label="text: +10 % over CRH 3")
+    axes[0].axhline(5, color="black", ls="--", lw=0.8, label="text: +5 % over CRH 4.5")
+    axes[0].set(xlabel="striking velocity (m/s)", ylabel="depth gain (%)", title="FE level: depth gain of one nose over another")
+    axes[1].set(xlabel="striking velocity (m/s)", ylabel="depth gain (m)", title="the same in metres")
+    for ax in axes:
+        ax.legend(fontsize=6)
+    save(fig, outputs.png, params.dpi)

@@ -156,3 +156,30 @@ def fe_meshes(inputs, outputs, params):
     rows += [{"kind": "mesh_r", "nose": "", "r": x, "z": math.nan, "nose_length_m": math.nan} for x in g.r]
     rows += [{"kind": "mesh_z", "nose": "", "r": math.nan, "z": x, "nose_length_m": math.nan} for x in g.z]
     write_csv(pd.DataFrame(rows).assign(element_size_m=h, target_elements=g.elements), outputs.csv)
+
+
+@task
+def fe_nose_pressure(inputs, outputs, params):
+    """The rigid-projectile check: the largest normal pressure on each Table 3 nose at the sweep's highest velocity,
+    over the entry (the nose plus two shank radii deep, then 0.5 ms), against an assumed steel yield strength."""
+    refs = reference.load_reference(inputs.reference)
+    cfg = params.cfg
+    cal = load_json(inputs.cal)
+    sc = scene_from_inputs(inputs, FE)
+    material = configured_hjc(refs, params.hjc, **material_switches(sc.effects, sc.material, params.hjc))
+    v = float(max(sc.velocities))
+    rows = {}
+    for name in ("double_ogive", "crh45", "crh3"):
+        nose = sc.noses[name]
+        end = (nose.length + 2 * nose.radius) / v + 5e-4
+        base = fe_settings(cfg, params.profile)
+        settings = with_failure_strain(dataclasses.replace(base, controls=dataclasses.replace(base.controls, end_time=end)),
+                                       cal["fs"])
+        r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg),
+                     expected_depth=expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho))
+        rows[name] = {"velocity": v, "time_s": end, "max_nose_pressure_pa": r.max_nose_pressure,
+                      "over_steel_yield": r.max_nose_pressure / params.steel_yield}
+        print(f"{name}: {r.max_nose_pressure / 1e6:.0f} MPa over the first {end * 1e3:.2f} ms at {v:.0f} m/s")
+    write_json({"steel_yield_pa_assumed": params.steel_yield, "element_size_m": settings.element_size,
+                "sampling": "-sigma_nn of live elements within 2.5 elements of the nose surface, every output interval",
+                "noses": rows}, outputs.json)
