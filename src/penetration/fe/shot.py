@@ -16,7 +16,7 @@ material along the shank matters), at 0.4 of the cost.
 
 Deceleration: the contact impulses are summed in bins of ``bin_width`` and
 filtered by a zero-phase fourth-order Butterworth low-pass at ``cutoff``
-(the declared filter; ``peak_vs_cutoff`` gives the peak for other cut-offs).
+(the declared filter; tasks.fe records the peak at the other cut-offs of the config).
 """
 from __future__ import annotations
 
@@ -128,21 +128,6 @@ def nose_pressure(model, projectile, nose, h):
     return float(np.max(-(srr * nr_ ** 2 + szz * nz_ ** 2 + 2 * srz * nr_ * nz_)))
 
 
-def tunnel_profile(model, rows=None):
-    """For each element row (initial depth z0 of its centre), the smallest radius of the live material now."""
-    g = model.grid
-    alive = (model.alive == 1).reshape(g.nz, g.nr)
-    r_nodes = model.r.reshape(g.nz + 1, g.nr + 1)
-    z0 = 0.5 * (g.z[:-1] + g.z[1:])
-    radius = np.full(g.nz, np.nan)
-    for j in range(g.nz):
-        live = np.flatnonzero(alive[j])
-        if live.size:
-            i = live[0]
-            radius[j] = min(r_nodes[j, i], r_nodes[j + 1, i])
-    return z0, radius
-
-
 @dataclass
 class ShotResult:
     depth: float
@@ -156,7 +141,6 @@ class ShotResult:
     elements: int
     eroded_mass: float
     max_nose_pressure: float
-    profile: tuple
     model: Model | None = None
     attempts: int = 1
 
@@ -204,10 +188,5 @@ def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), ta
     out = ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
                      {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
                       "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
-                     model.eroded_mass, pmax[0], tunnel_profile(model), model if keep_model else None, attempt)
+                     model.eroded_mass, pmax[0], model if keep_model else None, attempt)
     return out
-
-
-def peak_vs_cutoff(result: ShotResult, mass, cutoffs, bin_width):
-    h = result.histories
-    return np.array([filtered(h["t"], h["contact_force"], mass, bin_width, fc)[1].max() for fc in cutoffs])

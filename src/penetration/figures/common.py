@@ -40,3 +40,19 @@ def ending_at_rest(hist, keys):
 
 def color(name):
     return NOSE_COLORS.get(name.removeprefix("fig4_"), "gray")
+
+
+def do1_histories(t_ms, pd_over_d, velocity, refs, level, title, xlim):
+    """Fig 12's drawing: Pd/d and velocity of the DO1 shot against time, with the measured depth."""
+    fig, (ax,) = figure(1, 6.2, 4.2)
+    ax.plot(t_ms, pd_over_d, color="tab:green", label=f"Pd/d (ours, {level})")
+    exp = refs["table2.dop"].si / refs["table2.diameter"].si
+    ax.axhline(exp, color=PAPER_STYLE["color"], ls="--", lw=1,
+               label=f"experiment DO1: {refs['table2.dop'].value} m (Pd/d = {exp:.1f})")
+    ax.set(xlabel="t (ms)", ylabel="Pd/d", ylim=(0, 40), xlim=xlim, title=title)
+    ax2 = ax.twinx()
+    ax2.plot(t_ms, velocity, color="tab:blue", label="velocity (ours)")
+    ax2.set(ylabel="velocity (m/s)", ylim=(0, 900))
+    ax.legend(loc="lower center", fontsize=7)
+    ax2.legend(loc="lower right", fontsize=7)
+    return fig

@@ -12,7 +12,7 @@ import pandas as pd
 
 from ..io import load_json, task, write_csv, write_json
 from ..reference import TABLE3_NOSES, UNITS, load_reference
-from .common import PAPER_STYLE, color, figure, save
+from .common import PAPER_STYLE, color, do1_histories, figure, save
 
 G0 = UNITS["g"]
 LABELS = {"double_ogive": "double ogive", "crh45": "CRH 4.5", "crh3": "CRH 3", "minimum_nstar": "minimum N*"}
@@ -66,17 +66,9 @@ def fe_fig12(inputs, outputs, params):
     d = refs["table2.diameter"].si
     data = pd.DataFrame({"t_ms": h.t * 1e3, "velocity": h.velocity, "pd_over_d": h.depth / d})
     write_csv(data, outputs.csv)
-    fig, (ax,) = figure(1, 6.2, 4.2)
-    ax.plot(data.t_ms, data.pd_over_d, color="tab:green", label="Pd/d (ours, FE level)")
-    exp = refs["table2.dop"].si / d
-    ax.axhline(exp, color="black", ls="--", lw=1, label=f"experiment DO1: {refs['table2.dop'].value} m (Pd/d = {exp:.1f})")
-    ax.set(xlabel="t (ms)", ylabel="Pd/d", ylim=(0, 40), xlim=(0, max(18, data.t_ms.max() * 1.05)),
-           title=f"Fig 12 (FE): DO1, fs = {s['failure_strain']:.3g} calibrated on this shot, h = {s['element_size'] * 1e3:.3g} mm")
-    ax2 = ax.twinx()
-    ax2.plot(data.t_ms, data.velocity, color="tab:blue", label="velocity (ours)")
-    ax2.set(ylabel="velocity (m/s)", ylim=(0, 900))
-    ax.legend(loc="lower center", fontsize=7)
-    ax2.legend(loc="lower right", fontsize=7)
+    fig = do1_histories(data.t_ms, data.pd_over_d, data.velocity, refs, "FE level",
+                        f"Fig 12 (FE): DO1, fs = {s['failure_strain']:.3g} calibrated on this shot, "
+                        f"h = {s['element_size'] * 1e3:.3g} mm", (0, max(18, data.t_ms.max() * 1.05)))
     save(fig, outputs.png, params.dpi)
 
 
