@@ -216,3 +216,39 @@ def test_extended_crushing_lock_keeps_mul_as_offset_and_meets_the_dense_curve_at
     out, _ = hydro(0.105, n=200, state=st, material=ext)
     xb = (0.105 - ext.mul) / (1 + ext.mul)
     assert out["p"][-1] == pytest.approx(ext.k1 * xb + ext.k2 * xb**2 + ext.k3 * xb**3, rel=1e-6)
+
+
+@pytest.mark.parametrize("tension", ["openradioss", "sphinxsys"])
+def test_elastic_region_shortcut_equals_the_full_point_update(tension):
+    """hjc.elastic_region (the FE level's vectorised shortcut) against update_point on random states across the
+    three EOS regions, loading and unloading, compression and tension, damaged and intact: wherever the shortcut
+    claims validity it must give update_point's stress, pressure and mu_max, with no plastic strain and no damage."""
+    from penetration.hjc import elastic_region, permanent_strain, update_point
+
+    mat = HJC(tension=tension)
+    q = mat.as_array()
+    rng = np.random.default_rng(7)
+    n_valid = n_checked = 0
+    regions = set()
+    for _ in range(6000):
+        mu_max = float(rng.choice([0.0, rng.uniform(0, mat.muc), rng.uniform(mat.muc, mat.mul), rng.uniform(mat.mul, 0.3)]))
+        mu = float(mu_max + rng.uniform(-0.004, 0.002))
+        D = float(rng.choice([0.0, rng.uniform(0, 1), 1.0]))
+        s = rng.normal(0, float(rng.choice([1e5, 3e6, 3e7])), 4)
+        s[2] = -s[0] - s[1]
+        de = rng.normal(0, 1e-5, 4)
+        mu_p = 0.0 if mu_max <= mat.muc else float(permanent_strain(mu_max, q))
+        valid, s0, s1, s2, s3, p, mm, _ = elastic_region(*s, mu, mu_max, D, 0.0, *de, q)
+        n_checked += 1
+        if not valid:
+            continue
+        n_valid += 1
+        regions.add((mm <= mat.muc, mm <= mat.mul, p >= 0))
+        s6 = np.array([*s, 0.0, 0.0])
+        d6 = np.array([*de, 0.0, 0.0])
+        p_ref, mm_ref, mu_p_ref, D_ref, dep = update_point(s6, mu, mu_max, mu_p, D, 0.0, d6, 500.0, q)
+        assert dep == 0.0 and D_ref == D and mu_p_ref == mu_p
+        assert p == pytest.approx(p_ref, rel=1e-12, abs=1e-6) and mm == mm_ref
+        assert np.allclose([s0, s1, s2, s3], s6[:4], rtol=1e-12, atol=1e-6)
+    # the shortcut must cover the common cases, not only trivial ones
+    assert n_valid > 0.2 * n_checked and len(regions) >= 4

@@ -8,4 +8,5 @@ __version__ = "0.1.0"
 
 from . import numba_cache as _numba_cache  # noqa: E402
 
+_numba_cache.configure_llvm()
 _numba_cache.check()  # before any module with compiled kernels is imported

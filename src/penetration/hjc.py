@@ -286,6 +286,48 @@ def fracture_strain(p, q):
     return max(q[I_EFMIN], q[I_D1] * x ** q[I_D2])
 
 
+@njit(cache=True, inline="always")
+def elastic_region(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, q):
+    """update_point for a plane-shear state (s4 = s5 = 0) in its commonest cases, without branches.
+
+    The cases: no new crush (the EOS stays in region I, max(mu, mu_max) <=
+    mu_c, or unloads below mu_max, so mu_p and the damage do not grow) and a
+    deviatoric stress below a lower bound of the strength surface (the surface
+    without its rate factor, which is >= 1 when the rate floor is on or C = 0,
+    and with B P*^N bounded below by B min(P*, 1) when N <= 1), so no plastic
+    flow and no damage. Returns (valid, s0..s3, p, mu_max, c2) with c2 the
+    unloading (or dense, whichever is stiffer) bulk modulus + 4G/3 as in the FE
+    wave speed; where valid is false the result is meaningless and the caller
+    must call update_point. Written with selects only, so that a loop over
+    elements can be vectorised.
+    """
+    G = q[I_G]
+    tr = (de0 + de1 + de2) / 3.0
+    s0 += 2.0 * G * (de0 - tr)
+    s1 += 2.0 * G * (de1 - tr)
+    s2 += 2.0 * G * (de2 - tr)
+    s3 += 2.0 * G * de3
+    mm = max(mu, mu_max)
+    # EOS (eos() when mu < mu_max or in region I)
+    F = min(max((mu_max - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC]), 0.0), 1.0)
+    Ku = (1.0 - F) * q[I_KE] + F * q[I_K1]
+    p_unload = q[I_PC] + (q[I_PL] - q[I_PC]) * (mu_max - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC]) - Ku * (mu_max - mu)
+    mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
+    p_dense = q[I_K1] * mb + q[I_K2] * mb * mb + q[I_K3] * mb * mb * mb if mb > 0.0 else q[I_K1] * mb
+    p = q[I_KE] * mu if mm <= q[I_MUC] else (p_unload if mu_max <= q[I_MUCRUSH] else p_dense)
+    p = max(p, -q[I_T] * (1.0 - D))
+    K = max(Ku, q[I_K1] + 2.0 * q[I_K2] * mb + 3.0 * q[I_K3] * mb * mb) if mu > q[I_MUCRUSH] else Ku
+    seq = math.sqrt(3.0 * (0.5 * (s0 * s0 + s1 * s1 + s2 * s2) + s3 * s3))
+    # strength without the rate factor (Eq 16 and its tensile branch, as in strength())
+    ps = p / q[I_FC]
+    comp = q[I_A] * (1.0 - D) + (q[I_B] * min(ps, 1.0) if q[I_N] <= 1.0 else 0.0)
+    tens = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D) if q[I_TENSION] < 0.5 else q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
+    lower = comp if ps >= 0.0 else max(tens, 0.0)
+    valid = (((mm <= q[I_MUC]) | (mu < mu_max)) & (eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0))
+             & (seq <= q[I_SCALE] * q[I_FC] * min(lower, q[I_SMAX])))
+    return valid, s0, s1, s2, s3, p, mm, K + 4.0 * G / 3.0
+
+
 @njit(cache=True)
 def update_point(s, mu, mu_max, mu_p, D, eps_p, deps, rate, q):
     """One HJC stress update of a material point (hypo-elastic, radial return).

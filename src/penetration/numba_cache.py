@@ -8,6 +8,11 @@ is imported, ``check()`` fingerprints the sources of every module with
 compiled kernels and, when the fingerprint differs from the one recorded with
 the caches, deletes the package's numba cache files (they are rebuilt on the
 next call).
+
+``configure_llvm()`` raises LLVM's limit on the run-time alias checks a loop
+may need before it is vectorised (default 8): numba passes every array as a
+separate pointer, so the FE element pass (a dozen arrays) would otherwise stay
+scalar. It changes which loops vectorise, not the arithmetic of any loop.
 """
 from __future__ import annotations
 
@@ -21,10 +26,22 @@ STAMP = "numba_sources.sha256"
 
 def fingerprint() -> str:
     h = hashlib.sha256()
+    h.update(" ".join(LLVM_OPTIONS).encode())
     for rel in KERNEL_SOURCES:
         h.update(rel.encode())
         h.update((PACKAGE / rel).read_bytes())
     return h.hexdigest()
+
+
+LLVM_OPTIONS = ("-runtime-memory-check-threshold=4096", "-vectorize-memory-check-threshold=4096")
+
+
+def configure_llvm():
+    """Set the LLVM options above (before any kernel of the package is compiled)."""
+    import llvmlite.binding as llvm
+
+    for option in LLVM_OPTIONS:
+        llvm.set_option("penetration", option)
 
 
 def check():

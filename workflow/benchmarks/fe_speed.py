@@ -89,18 +89,26 @@ def main():
     b = step_bytes(m) / ne
     floor = b / bw
     print(f"mesh: {ne} elements (h = {args.size * 1e3:.3g} mm); bytes per element-step {b:.0f}; floor {floor * 1e9:.1f} ns")
-    # two states: elastic (velocities of 0.05 m/s: no element yields) and plastic (20 m/s: every element yields)
-    for label, amp in (("elastic", 0.05), ("plastic", 20.0)):
+    # two states: elastic (random velocities of 0.05 m/s: no element yields, half of them in tension) and
+    # plastic (a smooth deviatoric flow v_r = a r, v_z = -2 a z at a = 300/s: every element yields and
+    # none erodes, the worst case: the full HJC update with its powers and logarithm in every element)
+    for label in ("elastic", "plastic"):
         m.r[:], m.z[:], m.E[:] = base[0], base[1], base[2]
-        rng = np.random.default_rng(0)
-        m.vz[:] = amp * rng.standard_normal(m.vz.size)
-        m.vr[:] = amp * rng.standard_normal(m.vr.size)
+        m.alive[:] = 1
+        if label == "elastic":
+            rng = np.random.default_rng(0)
+            m.vz[:] = 0.05 * rng.standard_normal(m.vz.size)
+            m.vr[:] = 0.05 * rng.standard_normal(m.vr.size)
+        else:
+            m.vr[:] = 300.0 * m.r
+            m.vz[:] = -600.0 * (m.z - m.z.mean())
         m.vr[m.on_axis] = 0.0
         step()
         t = _timed(lambda: [step() for _ in range(args.steps)]) / args.steps
         per = t / ne
         yielded = float((m.E[K.EPSP] > 0).mean())
-        print(f"{label} ({yielded:.0%} of the elements yielded): {per * 1e9:.1f} ns per element-step = "
+        live = float((m.alive == 1).mean())
+        print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step = "
               f"{per / floor:.2f} x the floor (targets: <= 30 ns and <= 2 x)")
     if args.do1:
         from penetration.fe.shot import Settings, TargetSpec, run_shot

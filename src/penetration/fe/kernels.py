@@ -29,12 +29,12 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..hjc import I_G, I_K1, I_K2, I_K3, I_MUCRUSH, I_MULOCK, unloading_modulus, update_point
+from ..hjc import I_G, I_K1, I_K2, I_K3, I_KE, I_MUCRUSH, I_MULOCK, elastic_region, unloading_modulus, update_point
 from .materials import HJC_KIND
 
 # element fields (rows of E)
-SRR, SZZ, STT, SRZ, P, QV, MUMAX, MUP, DMG, EPSP, EPSEFF, IE, V0, MASS, CS = range(15)
-N_FIELDS = 15
+SRR, SZZ, STT, SRZ, P, QV, MUMAX, MUP, DMG, EPSP, EPSEFF, IE, V0, MASS = range(14)
+N_FIELDS = 14
 # controls (ctl)
 C_DT, C_QH, C_Q1, C_Q2, C_EROSION, C_EROSION_VALUE, C_GUARD, C_DTMIN = range(8)
 N_CTL = 8
@@ -105,11 +105,182 @@ def _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio):
     return dep
 
 
+# scratch rows of one element row (phase 1 -> phase 2 -> phase 3)
+(S_DRR, S_DZZ, S_DTT, S_DRZ, S_RATE, S_MU, S_TV, S_VH, S_STATE, S_R0, S_R1, S_R3, S_LC, S_C, S_DT, N_SCRATCH) = range(16)
+# S_STATE: 0 the element is not live, 1 live and done by phase 1 (HJC elastic region), 2 live, needs the
+# scalar material update, 3 live with an inverted or degenerate geometry
+ROWS_PER_CHUNK = 8
+_ONE = np.uint64(1)
+
+
+@njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
+def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S):
+    """Phase 1 of a row, branch-free (vectorised): strain rates, spin, volume ratio, length; for HJC the
+    no-crush elastic update (hjc.elastic_region), its energy, viscosity and stable step, stored into E where
+    valid. Unsigned indices: numba then emits no negative-index wrap-around and the loop vectorises."""
+    h = 0.5 * dt
+    un = np.uint64(nr)
+    b = np.uint64(j) * (un + _ONE)
+    e0 = np.uint64(j) * un
+    hjc = kind == HJC_KIND
+    for i in range(un):
+        e = e0 + i
+        n1 = b + i
+        n4 = n1 + un + _ONE
+        u1, u2, u3, u4 = vr[n1], vr[n1 + _ONE], vr[n4 + _ONE], vr[n4]
+        w1, w2, w3, w4 = vz[n1], vz[n1 + _ONE], vz[n4 + _ONE], vz[n4]
+        r1, r2, r3, r4 = r[n1], r[n1 + _ONE], r[n4 + _ONE], r[n4]
+        z1, z2, z3, z4 = z[n1], z[n1 + _ONE], z[n4 + _ONE], z[n4]
+        # ---- half-step geometry: strain rate and spin
+        R1, R2, R3, R4 = r1 - h * u1, r2 - h * u2, r3 - h * u3, r4 - h * u4
+        Z1, Z2, Z3, Z4 = z1 - h * w1, z2 - h * w2, z3 - h * w3, z4 - h * w4
+        A2h = (R3 - R1) * (Z4 - Z2) + (R2 - R4) * (Z3 - Z1)
+        # ---- new geometry
+        A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
+        c1 = (r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1)
+        c2 = (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2)
+        c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
+        c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
+        ok = ((A2h > 0.0) & (A2 > 0.0) & (min(min(c1, c2), min(c3, c4)) > 0.0) & (r1 + r2 + r3 + r4 > 0.0)
+              & (R1 + R2 + R3 + R4 > 0.0))
+        ih = 1.0 / A2h
+        br1, br2 = (Z2 - Z4) * ih, (Z3 - Z1) * ih
+        bz1, bz2 = (R4 - R2) * ih, (R1 - R3) * ih
+        drr = br1 * (u1 - u3) + br2 * (u2 - u4)
+        dzz = bz1 * (w1 - w3) + bz2 * (w2 - w4)
+        dvr_dz = bz1 * (u1 - u3) + bz2 * (u2 - u4)
+        dvz_dr = br1 * (w1 - w3) + br2 * (w2 - w4)
+        # hoop rate consistent with the exact volume: (1/W) sum (dW/dr_I - W b_rI) v_rI (= alpha for v_r = alpha r)
+        Wh, h1, h2, h3, h4 = _moment(R1, R2, R3, R4, Z1, Z2, Z3, Z4)
+        dtt = (h1 * u1 + h2 * u2 + h3 * u3 + h4 * u4) / Wh - drr
+        drz = 0.5 * (dvr_dz + dvz_dr)
+        spin = 0.5 * (dvr_dz - dvz_dr)
+        tv = drr + dzz + dtt
+        Vh = TWO_PI * Wh
+        W = _moment(r1, r2, r3, r4, z1, z2, z3, z4)[0]
+        mu_ratio = E[V0, e] / (TWO_PI * W)
+        # ---- rotate the deviatoric stress by the spin angle (Jaumann)
+        so0, so1, so2, so3, po = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]
+        th = spin * dt  # Cayley (Hughes-Winget) rotation: orthogonal, angle 2 atan(th) = 2 th + O(th^3)
+        den = 1.0 / (1.0 + th * th)
+        cs, sn = (1.0 - th * th) * den, 2.0 * th * den
+        am, dm = 0.5 * (so0 + so1), 0.5 * (so0 - so1)
+        dn = dm * cs + so3 * sn
+        t0, t1, t3 = am + dn, am - dn, so3 * cs - dm * sn
+        dev0, dev1, dev2 = drr - tv / 3.0, dzz - tv / 3.0, dtt - tv / 3.0
+        rate = math.sqrt(2.0 / 3.0 * (dev0 * dev0 + dev1 * dev1 + dev2 * dev2 + 2.0 * drz * drz))
+        # one length for viscosity, hourglass and time step: area over the longest side
+        s12 = (r2 - r1) ** 2 + (z2 - z1) ** 2
+        s23 = (r3 - r2) ** 2 + (z3 - z2) ** 2
+        s34 = (r4 - r3) ** 2 + (z4 - z3) ** 2
+        s41 = (r1 - r4) ** 2 + (z1 - z4) ** 2
+        lc = 0.5 * A2 / math.sqrt(max(max(s12, s23), max(s34, s41)))
+        # ---- HJC in its elastic region (the same result as update_point there)
+        de0, de1, de2, de3 = drr * dt, dzz * dt, dtt * dt, drz * dt
+        valid, n0, n1_, n2, n3, pn, mm, c2 = elastic_region(t0, t1, so2, t3, mu_ratio - 1.0, E[MUMAX, e], E[DMG, e],
+                                                        E[EPSP, e], de0, de1, de2, de3, q)
+        live = alive[e] == 1
+        fast = live & ok & hjc & valid
+        rho = q[0] * mu_ratio
+        c = math.sqrt(c2 / rho)
+        qv = rho * lc * (q1 * q1 * lc * tv * tv - q2 * c * tv) if tv < 0.0 else 0.0
+        die = Vh * (0.5 * ((so0 - po + n0 - pn) * de0 + (so1 - po + n1_ - pn) * de1 + (so2 - po + n2 - pn) * de2)
+                    + (so3 + n3) * de3 - qv * tv * dt)
+        Q = q2 * c + q1 * q1 * lc * abs(tv)
+        dte = lc / (Q + math.sqrt(Q * Q + c * c)) if tv < 0.0 else lc / c
+        E[SRR, e] = n0 if fast else so0
+        E[SZZ, e] = n1_ if fast else so1
+        E[STT, e] = n2 if fast else so2
+        E[SRZ, e] = n3 if fast else so3
+        E[P, e] = pn if fast else po
+        E[MUMAX, e] = mm if fast else E[MUMAX, e]
+        E[QV, e] = qv if fast else E[QV, e]
+        E[IE, e] = E[IE, e] + die if fast else E[IE, e]
+        E[EPSEFF, e] = E[EPSEFF, e] + rate * dt if fast else E[EPSEFF, e]
+        S[S_DRR, i] = drr
+        S[S_DZZ, i] = dzz
+        S[S_DTT, i] = dtt
+        S[S_DRZ, i] = drz
+        S[S_RATE, i] = rate
+        S[S_MU, i] = mu_ratio
+        S[S_TV, i] = tv
+        S[S_VH, i] = Vh
+        S[S_STATE, i] = 1.0 if fast else (0.0 if not live else (2.0 if ok else 3.0))
+        S[S_R0, i] = t0
+        S[S_R1, i] = t1
+        S[S_R3, i] = t3
+        S[S_LC, i] = lc
+        S[S_C, i] = c if fast else 0.0
+        S[S_DT, i] = dte
+
+
+@njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
+def _row_forces(j, nr, r, z, vr, vz, E, F, alive, qh, dt, S):
+    """Phase 3 of a row (vectorised): internal and hourglass forces of every element at the new geometry
+    (the node pass reads only live elements' forces); returns the hourglass work of the live ones."""
+    hg = 0.0
+    un = np.uint64(nr)
+    b = np.uint64(j) * (un + _ONE)
+    e0 = np.uint64(j) * un
+    for i in range(un):
+        e = e0 + i
+        n1 = b + i
+        n4 = n1 + un + _ONE
+        r1, r2, r3, r4 = r[n1], r[n1 + _ONE], r[n4 + _ONE], r[n4]
+        z1, z2, z3, z4 = z[n1], z[n1 + _ONE], z[n4 + _ONE], z[n4]
+        A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
+        W, m1, m2, m3, m4 = _moment(r1, r2, r3, r4, z1, z2, z3, z4)
+        V = TWO_PI * W
+        ia = 1.0 / A2
+        b1r, b2r = (z2 - z4) * ia, (z3 - z1) * ia
+        b1z, b2z = (r4 - r2) * ia, (r1 - r3) * ia
+        pq = E[P, e] + E[QV, e]
+        sn3 = E[SRZ, e]
+        srr = E[SRR, e] - pq
+        szz = E[SZZ, e] - pq
+        stt = E[STT, e] - pq
+        # hoop force 2 pi (dW/dr_I - W b_rI) sigma_tt: with V b_rI sigma_rr it is 2 pi sigma dW/dr_I when
+        # sigma_rr = sigma_tt, which sums to zero at interior nodes (the patch test)
+        ht = TWO_PI * stt
+        f0 = V * (b1r * (srr - stt) + b1z * sn3)
+        f1 = V * (b1z * szz + b1r * sn3)
+        f2 = V * (b2r * (srr - stt) + b2z * sn3)
+        f3 = V * (b2z * szz + b2r * sn3)
+        # hourglass (Flanagan-Belytschko, viscous; qh = 0 switches it off)
+        u1, u2, u3, u4 = vr[n1], vr[n1 + _ONE], vr[n4 + _ONE], vr[n4]
+        w1, w2, w3, w4 = vz[n1], vz[n1 + _ONE], vz[n4 + _ONE], vz[n4]
+        hr = r1 - r2 + r3 - r4
+        hz = z1 - z2 + z3 - z4
+        g1 = 0.25 * (1.0 - hr * b1r - hz * b1z)
+        g2 = 0.25 * (-1.0 - hr * b2r - hz * b2z)
+        g3 = 0.25 * (1.0 + hr * b1r + hz * b1z)
+        g4 = 0.25 * (-1.0 + hr * b2r + hz * b2z)
+        qr = g1 * u1 + g2 * u2 + g3 * u3 + g4 * u4
+        qz = g1 * w1 + g2 * w2 + g3 * w3 + g4 * w4
+        kap = qh * E[MASS, e] * S[S_C, i] / S[S_LC, i]
+        kr, kz = kap * qr, kap * qz
+        F[0, e] = f0 + ht * m1 + g1 * kr
+        F[1, e] = f1 + g1 * kz
+        F[2, e] = f2 + ht * m2 + g2 * kr
+        F[3, e] = f3 + g2 * kz
+        F[4, e] = -f0 + ht * m3 + g3 * kr
+        F[5, e] = -f1 + g3 * kz
+        F[6, e] = -f2 + ht * m4 + g4 * kr
+        F[7, e] = -f3 + g4 * kz
+        hg += (kr * qr + kz * qz) * dt if alive[e] == 1 else 0.0
+    return hg
+
+
 @njit(parallel=True, cache=True, error_model="numpy", fastmath=FAST)
 def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail):
     """Strain rates, stress update, internal energy, forces, hourglass, stable time step and erosion, per row.
 
-    Rows j0 <= j < j1 only (the active window). alive: 1 live, 0 eroded, 3 not
+    Rows j0 <= j < j1 only (the active window), in chunks of ROWS_PER_CHUNK
+    rows per task. Each row in three phases: a vectorised kinematics pass
+    that also completes every HJC element that neither crushes nor yields
+    (hjc.elastic_region); a scalar
+    pass with the full material update of the others, the erosion criteria
+    and guards; a vectorised force pass. alive: 1 live, 0 eroded, 3 not
     yet active, 4 retired behind the window; an element that erodes in this
     pass is set to 2.
     Per row j: rowdt[j] the smallest stable step, rowhg[j] the hourglass work,
@@ -119,179 +290,92 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
     dt = ctl[C_DT]
     qh, q1, q2 = ctl[C_QH], ctl[C_Q1], ctl[C_Q2]
     erosion, ev, guard, dtmin = int(ctl[C_EROSION]), ctl[C_EROSION_VALUE], ctl[C_GUARD] > 0.5, ctl[C_DTMIN]
-    for jj in prange(j1 - j0):
-        j = j0 + jj
+    nchunk = (j1 - j0 + ROWS_PER_CHUNK - 1) // ROWS_PER_CHUNK
+    for ch in prange(nchunk):
+        S = np.empty((N_SCRATCH, nr))
         s6 = np.zeros(6)
         d6 = np.zeros(6)
-        dt_row, hg_row, ero_row, fail, code = 1e30, 0.0, 0.0, -1, 0
-        for i in range(nr):
-            e = j * nr + i
-            if alive[e] != 1:
-                continue
-            n1 = j * (nr + 1) + i
-            n2 = n1 + 1
-            n4 = n1 + nr + 1
-            n3 = n4 + 1
-            u1, u2, u3, u4 = vr[n1], vr[n2], vr[n3], vr[n4]
-            w1, w2, w3, w4 = vz[n1], vz[n2], vz[n3], vz[n4]
-            r1, r2, r3, r4 = r[n1], r[n2], r[n3], r[n4]
-            z1, z2, z3, z4 = z[n1], z[n2], z[n3], z[n4]
-            # ---- half-step geometry: strain rate and spin
-            h = 0.5 * dt
-            R1, R2, R3, R4 = r1 - h * u1, r2 - h * u2, r3 - h * u3, r4 - h * u4
-            Z1, Z2, Z3, Z4 = z1 - h * w1, z2 - h * w2, z3 - h * w3, z4 - h * w4
-            A2h = (R3 - R1) * (Z4 - Z2) + (R2 - R4) * (Z3 - Z1)
-            # ---- new geometry
-            A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
-            sr = r1 + r2 + r3 + r4
-            c1 = (r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1)
-            c2 = (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2)
-            c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
-            c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
-            cmin = min(min(c1, c2), min(c3, c4))
-            if not (A2h > 0.0 and A2 > 0.0 and cmin > 0.0 and sr > 0.0 and R1 + R2 + R3 + R4 > 0.0):
-                if guard:
+        for j in range(j0 + ch * ROWS_PER_CHUNK, min(j1, j0 + (ch + 1) * ROWS_PER_CHUNK)):
+            _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S)
+            dt_row, ero_row, fail, code = 1e30, 0.0, -1, 0
+            for i in range(nr):
+                state = S[S_STATE, i]
+                if state == 0.0:
+                    continue
+                e = j * nr + i
+                if state == 3.0:
+                    if guard:
+                        alive[e] = 2
+                        ero_row += E[IE, e]
+                    elif fail < 0:
+                        fail, code = e, INVERTED
+                    continue
+                mu_ratio = S[S_MU, i]
+                if state == 2.0:
+                    drr, dzz, dtt, drz, tv = S[S_DRR, i], S[S_DZZ, i], S[S_DTT, i], S[S_DRZ, i], S[S_TV, i]
+                    rate, lc = S[S_RATE, i], S[S_LC, i]
+                    so0, so1, so2, so3, po = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]
+                    E[SRR, e], E[SZZ, e], E[SRZ, e] = S[S_R0, i], S[S_R1, i], S[S_R3, i]
+                    de0, de1, de2, de3 = drr * dt, dzz * dt, dtt * dt, drz * dt
+                    if kind == HJC_KIND:
+                        s6[0], s6[1], s6[2], s6[3] = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
+                        s6[4] = 0.0
+                        s6[5] = 0.0
+                        d6[0], d6[1], d6[2], d6[3] = de0, de1, de2, de3
+                        pn, mumax, mup, dmg, dep = update_point(s6, mu_ratio - 1.0, E[MUMAX, e], E[MUP, e],
+                                                                E[DMG, e], E[EPSP, e], d6, rate, q)
+                        E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e] = s6[0], s6[1], s6[2], s6[3]
+                        E[P, e], E[MUMAX, e], E[MUP, e], E[DMG, e] = pn, mumax, mup, dmg
+                    else:
+                        dep = _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio)
+                    E[EPSP, e] += dep
+                    E[EPSEFF, e] += rate * dt
+                    rho = q[0] * mu_ratio
+                    c = _wave_speed(kind, q, mu_ratio - 1.0, E[MUMAX, e], rho)
+                    S[S_C, i] = c
+                    qv = rho * lc * (q1 * q1 * lc * tv * tv - q2 * c * tv) if tv < 0.0 else 0.0
+                    pn = E[P, e]
+                    sn0, sn1, sn2, sn3 = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
+                    E[IE, e] += S[S_VH, i] * (0.5 * ((so0 - po + sn0 - pn) * de0 + (so1 - po + sn1 - pn) * de1
+                                                     + (so2 - po + sn2 - pn) * de2) + (so3 + sn3) * de3 - qv * tv * dt)
+                    E[QV, e] = qv
+                    if tv < 0.0:
+                        Q = q2 * c + q1 * q1 * lc * abs(tv)
+                        dte = lc / (Q + math.sqrt(Q * Q + c * c))
+                    else:
+                        dte = lc / c
+                else:
+                    dte = S[S_DT, i]
+                if not (math.isfinite(dte) and math.isfinite(E[IE, e]) and math.isfinite(E[P, e])
+                        and math.isfinite(E[SRR, e])):
+                    if fail < 0:
+                        fail, code = e, NON_FINITE
+                    continue
+                # ---- erosion and guards
+                gone = False
+                if erosion == 1:
+                    gone = E[EPSP, e] >= ev
+                elif erosion == 2:
+                    gone = E[EPSEFF, e] >= ev
+                elif erosion == 3:
+                    gone = 1.0 / mu_ratio - 1.0 >= ev
+                elif erosion == 4:
+                    gone = E[DMG, e] >= ev
+                if dte < dtmin:
+                    if guard:
+                        gone = True
+                    elif fail < 0:
+                        fail, code = e, DT_COLLAPSE
+                if gone:
                     alive[e] = 2
                     ero_row += E[IE, e]
                     continue
-                if fail < 0:
-                    fail, code = e, INVERTED
-                continue
-            ih = 1.0 / A2h
-            br1, br2 = (Z2 - Z4) * ih, (Z3 - Z1) * ih
-            bz1, bz2 = (R4 - R2) * ih, (R1 - R3) * ih
-            drr = br1 * (u1 - u3) + br2 * (u2 - u4)
-            dzz = bz1 * (w1 - w3) + bz2 * (w2 - w4)
-            dvr_dz = bz1 * (u1 - u3) + bz2 * (u2 - u4)
-            dvz_dr = br1 * (w1 - w3) + br2 * (w2 - w4)
-            # hoop rate consistent with the exact volume: (1/W) sum (dW/dr_I - W b_rI) v_rI (= alpha for v_r = alpha r)
-            Wh, h1, h2, h3, h4 = _moment(R1, R2, R3, R4, Z1, Z2, Z3, Z4)
-            dtt = (h1 * u1 + h2 * u2 + h3 * u3 + h4 * u4) / Wh - drr
-            drz = 0.5 * (dvr_dz + dvz_dr)
-            spin = 0.5 * (dvr_dz - dvz_dr)
-            tv = drr + dzz + dtt
-            Vh = TWO_PI * Wh
-            A = 0.5 * A2
-            W, m1, m2, m3, m4 = _moment(r1, r2, r3, r4, z1, z2, z3, z4)
-            V = TWO_PI * W
-            # ---- rotate the deviatoric stress by the spin angle (Jaumann)
-            so0, so1, so2, so3, po = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]
-            th = spin * dt  # Cayley (Hughes-Winget) rotation: orthogonal, angle 2 atan(th) = 2 th + O(th^3)
-            den = 1.0 / (1.0 + th * th)
-            cs, sn = (1.0 - th * th) * den, 2.0 * th * den
-            am, dm = 0.5 * (so0 + so1), 0.5 * (so0 - so1)
-            dn = dm * cs + so3 * sn
-            E[SRZ, e] = so3 * cs - dm * sn
-            E[SRR, e] = am + dn
-            E[SZZ, e] = am - dn
-            # ---- material
-            de0, de1, de2, de3 = drr * dt, dzz * dt, dtt * dt, drz * dt
-            dev0, dev1, dev2 = drr - tv / 3.0, dzz - tv / 3.0, dtt - tv / 3.0
-            rate = math.sqrt(2.0 / 3.0 * (dev0 * dev0 + dev1 * dev1 + dev2 * dev2 + 2.0 * drz * drz))
-            mu_ratio = E[V0, e] / V
-            if kind == HJC_KIND:
-                s6[0], s6[1], s6[2], s6[3] = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
-                s6[4] = 0.0
-                s6[5] = 0.0
-                d6[0], d6[1], d6[2], d6[3] = de0, de1, de2, de3
-                pn, mumax, mup, dmg, dep = update_point(s6, mu_ratio - 1.0, E[MUMAX, e], E[MUP, e], E[DMG, e],
-                                                        E[EPSP, e], d6, rate, q)
-                E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e] = s6[0], s6[1], s6[2], s6[3]
-                E[P, e], E[MUMAX, e], E[MUP, e], E[DMG, e] = pn, mumax, mup, dmg
-            else:
-                dep = _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio)
-            E[EPSP, e] += dep
-            E[EPSEFF, e] += rate * dt
-            rho = q[0] * mu_ratio
-            c = _wave_speed(kind, q, mu_ratio - 1.0, E[MUMAX, e], rho)
-            E[CS, e] = c
-            # one length for viscosity, hourglass and time step: area over the longest side
-            s12 = (r2 - r1) ** 2 + (z2 - z1) ** 2
-            s23 = (r3 - r2) ** 2 + (z3 - z2) ** 2
-            s34 = (r4 - r3) ** 2 + (z4 - z3) ** 2
-            s41 = (r1 - r4) ** 2 + (z1 - z4) ** 2
-            side = math.sqrt(max(max(s12, s23), max(s34, s41)))
-            ia = 1.0 / A2
-            lc = A / side
-            qv = rho * lc * (q1 * q1 * lc * tv * tv - q2 * c * tv) if tv < 0.0 else 0.0
-            # ---- internal energy (mid-point rule) incl. the viscous work
-            pn = E[P, e]
-            sn0, sn1, sn2, sn3 = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
-            E[IE, e] += Vh * (0.5 * ((so0 - po + sn0 - pn) * de0 + (so1 - po + sn1 - pn) * de1
-                                      + (so2 - po + sn2 - pn) * de2) + (so3 + sn3) * de3 - qv * tv * dt)
-            E[QV, e] = qv
-            # ---- forces at the new geometry
-            b1r, b2r = (z2 - z4) * ia, (z3 - z1) * ia
-            b1z, b2z = (r4 - r2) * ia, (r1 - r3) * ia
-            srr = sn0 - pn - qv
-            szz = sn1 - pn - qv
-            stt = sn2 - pn - qv
-            # hoop force 2 pi (dW/dr_I - W b_rI) sigma_tt: with V b_rI sigma_rr it is 2 pi sigma dW/dr_I when
-            # sigma_rr = sigma_tt, which sums to zero at interior nodes (the patch test)
-            ht = TWO_PI * stt
-            F[0, e] = V * (b1r * (srr - stt) + b1z * sn3) + ht * m1
-            F[1, e] = V * (b1z * szz + b1r * sn3)
-            F[2, e] = V * (b2r * (srr - stt) + b2z * sn3) + ht * m2
-            F[3, e] = V * (b2z * szz + b2r * sn3)
-            F[4, e] = -V * (b1r * (srr - stt) + b1z * sn3) + ht * m3
-            F[5, e] = -V * (b1z * szz + b1r * sn3)
-            F[6, e] = -V * (b2r * (srr - stt) + b2z * sn3) + ht * m4
-            F[7, e] = -V * (b2z * szz + b2r * sn3)
-            # ---- hourglass (Flanagan-Belytschko, viscous)
-            if qh > 0.0:
-                hr = r1 - r2 + r3 - r4
-                hz = z1 - z2 + z3 - z4
-                g1 = 0.25 * (1.0 - hr * b1r - hz * b1z)
-                g2 = 0.25 * (-1.0 - hr * b2r - hz * b2z)
-                g3 = 0.25 * (1.0 + hr * b1r + hz * b1z)
-                g4 = 0.25 * (-1.0 + hr * b2r + hz * b2z)
-                qr = g1 * u1 + g2 * u2 + g3 * u3 + g4 * u4
-                qz = g1 * w1 + g2 * w2 + g3 * w3 + g4 * w4
-                kap = qh * E[MASS, e] * c / lc
-                F[0, e] += kap * g1 * qr
-                F[1, e] += kap * g1 * qz
-                F[2, e] += kap * g2 * qr
-                F[3, e] += kap * g2 * qz
-                F[4, e] += kap * g3 * qr
-                F[5, e] += kap * g3 * qz
-                F[6, e] += kap * g4 * qr
-                F[7, e] += kap * g4 * qz
-                hg_row += kap * (qr * qr + qz * qz) * dt
-            # ---- stable time step
-            if tv < 0.0:
-                Q = q2 * c + q1 * q1 * lc * abs(tv)
-                dte = lc / (Q + math.sqrt(Q * Q + c * c))
-            else:
-                dte = lc / c
-            if not (math.isfinite(dte) and math.isfinite(E[IE, e]) and math.isfinite(pn) and math.isfinite(sn0)):
-                if fail < 0:
-                    fail, code = e, NON_FINITE
-                continue
-            # ---- erosion and guards
-            gone = False
-            if erosion == 1:
-                gone = E[EPSP, e] >= ev
-            elif erosion == 2:
-                gone = E[EPSEFF, e] >= ev
-            elif erosion == 3:
-                gone = 1.0 / mu_ratio - 1.0 >= ev
-            elif erosion == 4:
-                gone = E[DMG, e] >= ev
-            if dte < dtmin:
-                if guard:
-                    gone = True
-                elif fail < 0:
-                    fail, code = e, DT_COLLAPSE
-            if gone:
-                alive[e] = 2
-                ero_row += E[IE, e]
-                continue
-            dt_row = min(dt_row, dte)
-        rowdt[j] = dt_row
-        rowhg[j] = hg_row
-        rowero[j] = ero_row
-        rowfail[j] = fail
-        rowfail[nz + j] = code
+                dt_row = min(dt_row, dte)
+            rowhg[j] = _row_forces(j, nr, r, z, vr, vz, E, F, alive, qh, dt, S)
+            rowdt[j] = dt_row
+            rowero[j] = ero_row
+            rowfail[j] = fail
+            rowfail[nz + j] = code
 
 
 @njit(parallel=True, cache=True)
