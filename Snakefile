@@ -27,7 +27,7 @@ TIMING = ["figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_tra
 
 wildcard_constraints:
     scene=r"[A-Za-z0-9_]+",
-    profile=r"full|ci",
+    profile=r"full|ci|fine",
     size=r"[0-9.]+",
     nose=r"[a-z0-9_]+",
     velocity=r"[0-9.]+",
@@ -39,8 +39,25 @@ config["check"]["outputs"] = {path.format(profile=p): spec for path, spec in con
                               for p in (FE_PROFILES if "{profile}" in path else [None])}
 
 
+def fe_cfg(profile):
+    """The `fe` config slice for a profile's jobs; the `fine` profile (fe_convergence) joins its profiles."""
+    if profile != "fine":
+        return config["fe"]
+    h = config["fe_convergence"]["element_size"]
+    return {**config["fe"], "profiles": {**config["fe"]["profiles"], "fine": {"element_size": h, "mesh_study": [h]}}}
+
+
 def fe_calibration(profile):
-    return f"results/fe/{profile}/calibration_h{config['fe']['profiles'][profile]['element_size']}.json"
+    return f"results/fe/{profile}/calibration_h{fe_cfg(profile)['profiles'][profile]['element_size']}.json"
+
+
+# the convergence of the nose contrasts over the ci, full and fine meshes (with the full profile only)
+FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv"] if "full" in FE_PROFILES else []
+if FE_CONVERGENCE:
+    config["check"]["outputs"]["figures/fe/contrast_convergence.csv"] = {
+        "default": "fe_ratio", "columns": {"velocity_ms": "transcribed", "elements_across_radius": "round_off",
+                                            "element_size_m": "round_off", "paper_sim_ratio": "transcribed",
+                                            "failure_strain": "fe_depth", "depth_num_m": "fe_depth", "depth_den_m": "fe_depth"}}
 
 
 include: "workflow/rules/geometry.smk"
@@ -64,3 +81,4 @@ rule all:
         TIMING,
         expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
         expand("figures/timing/fe_mesh_study_{profile}.{ext}", profile=FE_PROFILES, ext=["png", "csv"]),
+        FE_CONVERGENCE,

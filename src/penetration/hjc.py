@@ -286,20 +286,62 @@ def fracture_strain(p, q):
     return max(q[I_EFMIN], q[I_D1] * x ** q[I_D2])
 
 
+N_CHORDS = 14
+
+
+@njit(cache=True)
+def power_chords(q):
+    """Chords of x^N between the breakpoints 0, 2^-8, 2^-7, ..., 2^5 (slopes row 0, intercepts row 1).
+
+    For N <= 1 (x^N concave) the smallest chord at x in [0, 32] is the chord of
+    x's own interval, so min_k(slope_k x + icpt_k) is a lower bound of x^N
+    (exact at the breakpoints); for N > 1 every chord is set to 0 (bound 0).
+    """
+    out = np.zeros((2, N_CHORDS))
+    if q[I_N] > 1.0:
+        return out
+    x0, f0 = 0.0, 0.0
+    for k in range(N_CHORDS):
+        x1 = 2.0 ** (k - 8)
+        f1 = x1 ** q[I_N]
+        slope = (f1 - f0) / (x1 - x0)
+        out[0, k] = slope
+        out[1, k] = f0 - slope * x0
+        x0, f0 = x1, f1
+    return out
+
+
 @njit(cache=True, inline="always")
-def elastic_region(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, q):
+def _chord_min(c, x):
+    """min_k (c[0, k] x + c[1, k]) over the N_CHORDS chords, written out: a loop here would keep LLVM from
+    vectorising the caller's loop over elements."""
+    m0 = min(c[0, 0] * x + c[1, 0], c[0, 1] * x + c[1, 1])
+    m1 = min(c[0, 2] * x + c[1, 2], c[0, 3] * x + c[1, 3])
+    m2 = min(c[0, 4] * x + c[1, 4], c[0, 5] * x + c[1, 5])
+    m3 = min(c[0, 6] * x + c[1, 6], c[0, 7] * x + c[1, 7])
+    m4 = min(c[0, 8] * x + c[1, 8], c[0, 9] * x + c[1, 9])
+    m5 = min(c[0, 10] * x + c[1, 10], c[0, 11] * x + c[1, 11])
+    m6 = min(c[0, 12] * x + c[1, 12], c[0, 13] * x + c[1, 13])
+    return min(min(min(m0, m1), min(m2, m3)), min(min(m4, m5), m6))
+
+
+@njit(cache=True, inline="always")
+def quick_update(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, rate, q, chords):
     """update_point for a plane-shear state (s4 = s5 = 0) in its commonest cases, without branches.
 
-    The cases: no new crush (the EOS stays in region I, max(mu, mu_max) <=
-    mu_c, or unloads below mu_max, so mu_p and the damage do not grow) and a
-    deviatoric stress below a lower bound of the strength surface (the surface
-    without its rate factor, which is >= 1 when the rate floor is on or C = 0,
-    and with B P*^N bounded below by B min(P*, 1) when N <= 1), so no plastic
-    flow and no damage. Returns (valid, s0..s3, p, mu_max, c2) with c2 the
-    unloading (or dense, whichever is stiffer) bulk modulus + 4G/3 as in the FE
-    wave speed; where valid is false the result is meaningless and the caller
-    must call update_point. Written with selects only, so that a loop over
-    elements can be vectorised.
+    Two cases, both without new crush (the EOS in region I, max(mu, mu_max)
+    <= mu_c, or unloading below mu_max, so mu_p does not grow):
+    (a) no plastic flow: the trial deviator lies below a lower bound of the
+        strength surface: x^N by its chords (power_chords), the rate factor
+        1 + C ln r by 1 + C (1 - 1/r) (the rate floor on, or C = 0);
+    (b) fully damaged (D = 1) and not in compression: the strength is 0, the
+        deviator returns to 0 and the plastic strain grows by seq/3G; the damage
+        stays 1.
+    Returns (valid, s0..s3, p, mu_max, dep, c2) with c2 the unloading (or dense,
+    whichever is stiffer) bulk modulus + 4G/3 as in the FE wave speed; where
+    valid is false the result is meaningless and the caller must call
+    update_point. Written with selects only, so that a loop over elements can
+    be vectorised.
     """
     G = q[I_G]
     tr = (de0 + de1 + de2) / 3.0
@@ -314,18 +356,26 @@ def elastic_region(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, q):
     p_unload = q[I_PC] + (q[I_PL] - q[I_PC]) * (mu_max - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC]) - Ku * (mu_max - mu)
     mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
     p_dense = q[I_K1] * mb + q[I_K2] * mb * mb + q[I_K3] * mb * mb * mb if mb > 0.0 else q[I_K1] * mb
-    p = q[I_KE] * mu if mm <= q[I_MUC] else (p_unload if mu_max <= q[I_MUCRUSH] else p_dense)
-    p = max(p, -q[I_T] * (1.0 - D))
+    p_eos = q[I_KE] * mu if mm <= q[I_MUC] else (p_unload if mu_max <= q[I_MUCRUSH] else p_dense)
+    p = max(p_eos, -q[I_T] * (1.0 - D))
     K = max(Ku, q[I_K1] + 2.0 * q[I_K2] * mb + 3.0 * q[I_K3] * mb * mb) if mu > q[I_MUCRUSH] else Ku
     seq = math.sqrt(3.0 * (0.5 * (s0 * s0 + s1 * s1 + s2 * s2) + s3 * s3))
-    # strength without the rate factor (Eq 16 and its tensile branch, as in strength())
+    # (a) a lower bound of the strength surface (Eq 16 and its tensile branch, as in strength())
     ps = p / q[I_FC]
-    comp = q[I_A] * (1.0 - D) + (q[I_B] * min(ps, 1.0) if q[I_N] <= 1.0 else 0.0)
+    x = min(max(ps, 0.0), 32.0)
+    xn = _chord_min(chords, x)
+    comp = q[I_A] * (1.0 - D) + q[I_B] * xn
     tens = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D) if q[I_TENSION] < 0.5 else q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
     lower = comp if ps >= 0.0 else max(tens, 0.0)
-    valid = (((mm <= q[I_MUC]) | (mu < mu_max)) & (eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0))
-             & (seq <= q[I_SCALE] * q[I_FC] * min(lower, q[I_SMAX])))
-    return valid, s0, s1, s2, s3, p, mm, K + 4.0 * G / 3.0
+    factor = 1.0 + q[I_C] * max(0.0, 1.0 - q[I_EPS0] / max(rate, 1e-300)) if q[I_RATEFLOOR] > 0.5 else 1.0
+    no_flow = ((eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0))
+               & (seq <= q[I_SCALE] * q[I_FC] * min(lower * factor, q[I_SMAX])))
+    # (b) fully damaged outside compression
+    spent = (D >= 1.0) & (p_eos <= 0.0)
+    valid = ((mm <= q[I_MUC]) | (mu < mu_max)) & (no_flow | spent)
+    keep = 1.0 if no_flow else 0.0
+    dep = 0.0 if no_flow else seq / (3.0 * G)
+    return valid, s0 * keep, s1 * keep, s2 * keep, s3 * keep, p, mm, dep, K + 4.0 * G / 3.0
 
 
 @njit(cache=True)

@@ -7,7 +7,9 @@ perfect caching), the floor (bytes / bandwidth), and the measured time per
 element-step of one full explicit step (node pass, move, element pass; no
 contact) on a DO1-like HJC target in motion, as a ratio to the floor.
 Optionally (--do1) the wall time of the DO1 shot at the default mesh with
-the calibrated failure strain of results/fe/full/.
+the calibrated failure strain of results/fe/full/, and the time per
+element-step in the state of that shot at 6 ms (the window around the
+nose: crushed, damaged, yielding and elastic elements as they come).
 
     python workflow/benchmarks/fe_speed.py [--threads 2] [--size 0.00875] [--do1]
 """
@@ -59,6 +61,23 @@ def step_bytes(m: Model):
     return element + node + move
 
 
+def _window_step_time(m: Model, steps):
+    """Seconds per element-step of one explicit step over the active window of a copy of m (no contact)."""
+    r, z, vr, vz, E, alive, F = (a.copy() for a in (m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F))
+    vr0, vz0 = vr.copy(), vz.copy()
+    ctl, rowdt, rowhg, rowero, rowfail, rowbnd = (a.copy() for a in (m.ctl, m.rowdt, m.rowhg, m.rowero, m.rowfail, m.rowbnd))
+    dt = float(ctl[K.C_DT])
+
+    def step():
+        K.node_pass(m.nr, m.nz, m.j0, m.j1, F, alive, m.mass, vr, vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.zp, m.zs,
+                    rowbnd)
+        K.move(r, z, vr, vz, m.nstate, dt, m.j0 * (m.nr + 1), (m.j1 + 1) * (m.nr + 1))
+        K.element_pass(m.nr, m.nz, m.j0, m.j1, r, z, vr, vz, E, alive, F, m.kind, m.q, ctl, rowdt, rowhg, rowero, rowfail)
+
+    step()
+    return _timed(lambda: [step() for _ in range(steps)]) / steps / ((m.j1 - m.j0) * m.nr)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--threads", type=int, default=2, help="numba threads (default 2)")
@@ -81,7 +100,7 @@ def main():
     def step():
         K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash,
                     m.zp, m.zs, m.rowbnd)
-        K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt)
+        K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt, 0, m.r.size)
         K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
                        m.rowhg, m.rowero, m.rowfail)
 
@@ -111,13 +130,32 @@ def main():
         print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step = "
               f"{per / floor:.2f} x the floor (targets: <= 30 ns and <= 2 x)")
     if args.do1:
+        from penetration.fe import shot as fe_shot
         from penetration.fe.shot import Settings, TargetSpec, run_shot
         from penetration.fe_level import with_failure_strain
         from penetration.io import read_inference
         cal = json.loads(Path(f"results/fe/full/calibration_h{args.size}.json").read_text())
         nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]
+        # the DO1 state: at t = 6 ms of the shot, one full step (node pass, move, element pass over the window's
+        # rows; no contact) timed on a copy of the model, per element of the window
+        snap = {}
+        solver_run = fe_shot.run
+
+        def run_with_snapshot(model, projectile=None, callback=None, log=None):
+            def cb(mm, t):
+                callback(mm, t)
+                if "t" not in snap and t >= 6e-3:
+                    snap.update(t=t, per=_window_step_time(mm, args.steps), live=int((mm.alive == 1).sum()),
+                                window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[K.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
+            return solver_run(model, projectile, callback=cb, log=log)
+
+        fe_shot.run = run_with_snapshot
         r = run_shot(nose, 81.1, 835.0, HJC(), with_failure_strain(Settings(element_size=args.size), cal["fs"]),
                      TargetSpec(), expected_depth=6.6)
+        fe_shot.run = solver_run
+        print(f"DO1 state at t = {snap['t'] * 1e3:.1f} ms ({snap['window']} elements in the window, {snap['yielded']:.0%} of them "
+              f"yielded so far): {snap['per'] * 1e9:.1f} ns per element-step = {snap['per'] / floor:.2f} x the floor "
+              f"(targets: <= 30 ns and <= 2 x)")
         s = r.summary()
         print(f"DO1 at h = {args.size * 1e3:.3g} mm, fs = {cal['fs']:.4g}: depth {r.depth:.3f} m, wall {r.wall_time:.1f} s "
               f"(target 60 s: {r.wall_time / 60:.2f} of it), {r.steps} steps, {r.elements} elements in the mesh, "

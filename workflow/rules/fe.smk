@@ -15,7 +15,7 @@ def fe_histories(scene):
 rule calibrate_fe_do1:
     input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json", reference=config["reference"],
     output: json="results/fe/{profile}/calibration_h{size}.json",
-    params: cfg=config["fe"], hjc=config["cavity"], shot=config["calibration"]["do1"],
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], shot=config["calibration"]["do1"],
             profile=lambda w: w.profile, size=lambda w: w.size,
     threads: 2
     resources: mem_mb=2000, runtime=60
@@ -30,7 +30,7 @@ rule fe_shot:
     output: json="results/fe/{profile}/{scene}/{nose}_{velocity}.json",
             histories="results/fe/{profile}/{scene}/{nose}_{velocity}_histories.csv",
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
-    params: cfg=config["fe"], hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
             velocity=lambda w: w.velocity,
     threads: 2
     resources: mem_mb=2000, runtime=30
@@ -71,7 +71,7 @@ rule fe_fig12:
 rule fe_meshes:
     input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json",
     output: csv="results/fe/{profile}/meshes.csv",
-    params: cfg=config["fe"], profile=lambda w: w.profile,
+    params: cfg=lambda w: fe_cfg(w.profile), profile=lambda w: w.profile,
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_meshes_{profile}.tsv"
@@ -141,7 +141,7 @@ rule fe_nose_pressure:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"], cal=lambda w: fe_calibration(w.profile),
            scene="workflow/scenes/fe/fig15.yaml", schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/nose_pressure.json",
-    params: cfg=config["fe"], hjc=config["cavity"], profile=lambda w: w.profile,
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
             steel_yield=config["fe_checks"]["steel_yield_pa"],
     threads: 2
     resources: mem_mb=2000, runtime=10
@@ -196,3 +196,17 @@ rule fe_contrasts:
 
 
 FE_OUTPUTS += ["contrasts.png", "contrasts.csv"]
+
+
+rule fe_contrast_convergence:
+    input: **task("figures.fe_level"), reference=config["reference"],
+           ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=["ci", "full", "fine"]),
+           tables=expand("figures/fe/{profile}/table3.csv", profile=["ci", "full", "fine"]),
+           calibrations=[fe_calibration(p) for p in ("ci", "full", "fine")],
+    output: png="figures/fe/contrast_convergence.png", csv="figures/fe/contrast_convergence.csv",
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_contrast_convergence.tsv"
+    log: "results/logs/fe_contrast_convergence.log",
+    script: "../scripts/run_task.py"

@@ -29,7 +29,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..hjc import I_G, I_K1, I_K2, I_K3, I_KE, I_MUCRUSH, I_MULOCK, elastic_region, unloading_modulus, update_point
+from ..hjc import I_HOOP, I_G, I_K1, I_K2, I_K3, I_MUCRUSH, I_MULOCK, power_chords, quick_update, unloading_modulus, update_point
 from .materials import HJC_KIND
 
 # element fields (rows of E)
@@ -38,6 +38,7 @@ N_FIELDS = 14
 # controls (ctl)
 C_DT, C_QH, C_Q1, C_Q2, C_EROSION, C_EROSION_VALUE, C_GUARD, C_DTMIN = range(8)
 N_CTL = 8
+N_HJC = I_HOOP + 1  # length of an HJC parameter array
 EROSION_KINDS = {"none": 0, "plastic_strain": 1, "effective_strain": 2, "volumetric_tension": 3, "damage": 4}
 BOUNDARIES = {"free": 0, "roller": 1, "non_reflecting": 2}
 # failure codes
@@ -45,8 +46,11 @@ OK, NON_FINITE, INVERTED, DT_COLLAPSE = 0, 1, 2, 3
 FAILURES = {NON_FINITE: "non-finite stress or geometry", INVERTED: "inverted element (a corner Jacobian <= 0)",
             DT_COLLAPSE: "element time step below the floor"}
 TWO_PI = 2.0 * math.pi
-# fast-math flags that keep NaN and infinity semantics (the failure checks rely on them)
-FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
+# No fast-math: with contraction, reassociation or reciprocal approximations LLVM's choices depend on the
+# compilation context, and a kernel loaded from numba's cache then gave a different (chaotic) DO1 depth
+# (5.18 m) from the same kernel compiled afresh (5.10 m). Without them every operation is IEEE-exact in
+# source order, vectorised or not; the loops vectorise all the same (no reductions inside them).
+FAST = False
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
@@ -106,17 +110,18 @@ def _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio):
 
 
 # scratch rows of one element row (phase 1 -> phase 2 -> phase 3)
-(S_DRR, S_DZZ, S_DTT, S_DRZ, S_RATE, S_MU, S_TV, S_VH, S_STATE, S_R0, S_R1, S_R3, S_LC, S_C, S_DT, N_SCRATCH) = range(16)
-# S_STATE: 0 the element is not live, 1 live and done by phase 1 (HJC elastic region), 2 live, needs the
+(S_DRR, S_DZZ, S_DTT, S_DRZ, S_RATE, S_MU, S_TV, S_VH, S_STATE, S_R0, S_R1, S_R3, S_LC, S_C, S_DT, S_HG,
+ N_SCRATCH) = range(17)
+# S_STATE: 0 the element is not live, 1 live and done by phase 1 (hjc.quick_update), 2 live, needs the
 # scalar material update, 3 live with an inverted or degenerate geometry
 ROWS_PER_CHUNK = 8
 _ONE = np.uint64(1)
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
-def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S):
+def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, S):
     """Phase 1 of a row, branch-free (vectorised): strain rates, spin, volume ratio, length; for HJC the
-    no-crush elastic update (hjc.elastic_region), its energy, viscosity and stable step, stored into E where
+    no-crush update (hjc.quick_update: no plastic flow, or fully damaged outside compression), its energy, viscosity and stable step, stored into E where
     valid. Unsigned indices: numba then emits no negative-index wrap-around and the loop vectorises."""
     h = 0.5 * dt
     un = np.uint64(nr)
@@ -177,8 +182,8 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S):
         lc = 0.5 * A2 / math.sqrt(max(max(s12, s23), max(s34, s41)))
         # ---- HJC in its elastic region (the same result as update_point there)
         de0, de1, de2, de3 = drr * dt, dzz * dt, dtt * dt, drz * dt
-        valid, n0, n1_, n2, n3, pn, mm, c2 = elastic_region(t0, t1, so2, t3, mu_ratio - 1.0, E[MUMAX, e], E[DMG, e],
-                                                        E[EPSP, e], de0, de1, de2, de3, q)
+        valid, n0, n1_, n2, n3, pn, mm, dep, c2 = quick_update(t0, t1, so2, t3, mu_ratio - 1.0, E[MUMAX, e], E[DMG, e],
+                                                               E[EPSP, e], de0, de1, de2, de3, rate, q, chords)
         live = alive[e] == 1
         fast = live & ok & hjc & valid
         rho = q[0] * mu_ratio
@@ -197,6 +202,7 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S):
         E[QV, e] = qv if fast else E[QV, e]
         E[IE, e] = E[IE, e] + die if fast else E[IE, e]
         E[EPSEFF, e] = E[EPSEFF, e] + rate * dt if fast else E[EPSEFF, e]
+        E[EPSP, e] = E[EPSP, e] + dep if fast else E[EPSP, e]
         S[S_DRR, i] = drr
         S[S_DZZ, i] = dzz
         S[S_DTT, i] = dtt
@@ -218,7 +224,6 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S):
 def _row_forces(j, nr, r, z, vr, vz, E, F, alive, qh, dt, S):
     """Phase 3 of a row (vectorised): internal and hourglass forces of every element at the new geometry
     (the node pass reads only live elements' forces); returns the hourglass work of the live ones."""
-    hg = 0.0
     un = np.uint64(nr)
     b = np.uint64(j) * (un + _ONE)
     e0 = np.uint64(j) * un
@@ -267,7 +272,12 @@ def _row_forces(j, nr, r, z, vr, vz, E, F, alive, qh, dt, S):
         F[5, e] = -f1 + g3 * kz
         F[6, e] = -f2 + ht * m4 + g4 * kr
         F[7, e] = -f3 + g4 * kz
-        hg += (kr * qr + kz * qz) * dt if alive[e] == 1 else 0.0
+        S[S_HG, i] = (kr * qr + kz * qz) * dt if alive[e] == 1 else 0.0
+    # the hourglass work of the row, summed in order (a reduction inside the loop above would need
+    # reassociation to vectorise, and reassociated sums differ between compilations)
+    hg = 0.0
+    for i in range(nr):
+        hg += S[S_HG, i]
     return hg
 
 
@@ -277,8 +287,8 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
 
     Rows j0 <= j < j1 only (the active window), in chunks of ROWS_PER_CHUNK
     rows per task. Each row in three phases: a vectorised kinematics pass
-    that also completes every HJC element that neither crushes nor yields
-    (hjc.elastic_region); a scalar
+    that also completes every HJC element that neither crushes nor flows
+    plastically, or is fully damaged outside compression (hjc.quick_update); a scalar
     pass with the full material update of the others, the erosion criteria
     and guards; a vectorised force pass. alive: 1 live, 0 eroded, 3 not
     yet active, 4 retired behind the window; an element that erodes in this
@@ -290,13 +300,17 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
     dt = ctl[C_DT]
     qh, q1, q2 = ctl[C_QH], ctl[C_Q1], ctl[C_Q2]
     erosion, ev, guard, dtmin = int(ctl[C_EROSION]), ctl[C_EROSION_VALUE], ctl[C_GUARD] > 0.5, ctl[C_DTMIN]
+    # phase 1 evaluates the HJC shortcut for every element (selects, not branches): other materials get a
+    # stand-in HJC parameter array so that it reads in bounds (its results are discarded for them)
+    qh_ = q if kind == HJC_KIND else np.ones(N_HJC)
+    chords = power_chords(qh_)
     nchunk = (j1 - j0 + ROWS_PER_CHUNK - 1) // ROWS_PER_CHUNK
     for ch in prange(nchunk):
         S = np.empty((N_SCRATCH, nr))
         s6 = np.zeros(6)
         d6 = np.zeros(6)
         for j in range(j0 + ch * ROWS_PER_CHUNK, min(j1, j0 + (ch + 1) * ROWS_PER_CHUNK)):
-            _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, dt, q1, q2, S)
+            _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, qh_, chords, dt, q1, q2, S)
             dt_row, ero_row, fail, code = 1e30, 0.0, -1, 0
             for i in range(nr):
                 state = S[S_STATE, i]
@@ -378,7 +392,71 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
             rowfail[nz + j] = code
 
 
-@njit(parallel=True, cache=True)
+@njit(cache=True, inline="always", error_model="numpy")
+def _node_velocity(ur, uz, fr, fz, m, dtv, da, nr_, nz_, fx, zp, zs):
+    """A node's new velocity from its force, its dashpot (area da > 0, normal (nr_, nz_)) and its fixity, without
+    branches; returns (v_r, v_z, power absorbed by the dashpot, its axial force)."""
+    ur0, uz0 = ur, uz
+    ur = ur - dtv * fr / m
+    uz = uz - dtv * fz / m
+    # dashpot implicit in the new velocity: v' = v*/(1 + dtv Z da/m) per direction (stable for any damping; an
+    # explicit dashpot at the wave impedance is near-critically damped and needs a smaller step); its work is
+    # the impulse times the mean of the old and new velocities
+    vn = ur * nr_ + uz * nz_
+    tr_, tz_ = ur - vn * nr_, uz - vn * nz_
+    vn1 = vn / (1.0 + dtv * zp * da / m)
+    cn = 1.0 / (1.0 + dtv * zs * da / m)
+    ur1 = vn1 * nr_ + tr_ * cn
+    uz1 = vn1 * nz_ + tz_ * cn
+    ir = m * (ur1 - ur)  # impulse of the dashpot
+    iz = m * (uz1 - uz)
+    dashed = da > 0.0
+    pw = (ir * 0.5 * (ur0 + ur1) + iz * 0.5 * (uz0 + uz1)) / dtv if dashed else 0.0
+    fb = iz / dtv if dashed else 0.0
+    ur = ur1 if dashed else ur
+    uz = uz1 if dashed else uz
+    ur = 0.0 if (fx & 1) != 0 else ur
+    uz = 0.0 if (fx & 2) != 0 else uz
+    return ur, uz, pw, fb
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _edge_node(n, i, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W):
+    """_node_velocity for a node on an edge of the grid (fewer than four elements around it)."""
+    fr = 0.0
+    fz = 0.0
+    if i < nr and j < nz:
+        e = j * nr + i
+        if alive[e] == 1:
+            fr += F[0, e]
+            fz += F[1, e]
+    if i > 0 and j < nz:
+        e = j * nr + i - 1
+        if alive[e] == 1:
+            fr += F[2, e]
+            fz += F[3, e]
+    if i > 0 and j > 0:
+        e = (j - 1) * nr + i - 1
+        if alive[e] == 1:
+            fr += F[4, e]
+            fz += F[5, e]
+    if i < nr and j > 0:
+        e = (j - 1) * nr + i
+        if alive[e] == 1:
+            fr += F[6, e]
+            fz += F[7, e]
+    ur, uz = vr[n], vz[n]
+    u1, w1, pw, fb = _node_velocity(ur, uz, fr, fz, mass[n], dtv, dash[0, n], dash[1, n], dash[2, n], fix[n], zp, zs)
+    keep = nstate[n] < 2
+    vr0[n] = ur
+    vz0[n] = uz
+    vr[n] = u1 if keep else ur
+    vz[n] = w1 if keep else uz
+    W[0, i] = pw if keep else 0.0
+    W[1, i] = fb if keep else 0.0
+
+
+@njit(parallel=True, cache=True, error_model="numpy")
 def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd):
     """Gather element forces (internal + hourglass), add boundary dashpots, update velocities by dtv.
 
@@ -387,83 +465,69 @@ def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix
     of the boundary, traction -rho c_p v_n n - rho c_s v_t, taken at the new
     velocity. rowbnd[0, j]: power absorbed, rowbnd[1, j]: axial force of the
     dashpots, per node row. vr0, vz0 receive the velocities before the update
-    (for the contact's work).
+    (for the contact's work). Dropped nodes (nstate >= 2) keep their velocity.
+    Interior nodes of a row go through a branch-free (vectorised) loop, with
+    unsigned indices as in the element pass; nodes on the grid's edges one by one.
     """
-    for jj in prange(j1 - j0 + 1):
-        j = j0 + jj
-        pw = 0.0
-        fb = 0.0
-        for i in range(nr + 1):
-            n = j * (nr + 1) + i
-            if nstate[n] >= 2:
-                continue
-            fr = 0.0
-            fz = 0.0
-            if i < nr and j < nz:
-                e = j * nr + i
-                if alive[e] == 1:
-                    fr += F[0, e]
-                    fz += F[1, e]
-            if i > 0 and j < nz:
-                e = j * nr + i - 1
-                if alive[e] == 1:
-                    fr += F[2, e]
-                    fz += F[3, e]
-            if i > 0 and j > 0:
-                e = (j - 1) * nr + i - 1
-                if alive[e] == 1:
-                    fr += F[4, e]
-                    fz += F[5, e]
-            if i < nr and j > 0:
-                e = (j - 1) * nr + i
-                if alive[e] == 1:
-                    fr += F[6, e]
-                    fz += F[7, e]
-            ur, uz = vr[n], vz[n]
-            vr0[n] = ur
-            vz0[n] = uz
-            m = mass[n]
-            ur -= dtv * fr / m
-            uz -= dtv * fz / m
-            da = dash[0, n]
-            if da > 0.0:
-                # dashpot implicit in the new velocity: v' = v*/(1 + dtv Z da/m) per direction (stable for any
-                # damping; an explicit dashpot at the wave impedance is near-critically damped and needs a
-                # smaller step); its work is the impulse times the mean of the old and new velocities
-                nr_, nz_ = dash[1, n], dash[2, n]
-                vn = ur * nr_ + uz * nz_
-                tr_, tz_ = ur - vn * nr_, uz - vn * nz_
-                vn1 = vn / (1.0 + dtv * zp * da / m)
-                cn = 1.0 / (1.0 + dtv * zs * da / m)
-                ur1 = vn1 * nr_ + tr_ * cn
-                uz1 = vn1 * nz_ + tz_ * cn
-                ir = m * (ur1 - ur)  # impulse of the dashpot
-                iz = m * (uz1 - uz)
-                pw -= (ir * 0.5 * (vr0[n] + ur1) + iz * 0.5 * (vz0[n] + uz1)) / dtv
-                fb += iz / dtv
-                ur, uz = ur1, uz1
-            fx = fix[n]
-            if fx & 1:
-                ur = 0.0
-            if fx & 2:
-                uz = 0.0
-            vr[n] = ur
-            vz[n] = uz
-        rowbnd[0, j] = pw
-        rowbnd[1, j] = fb
+    nchunk = (j1 - j0 + 1 + ROWS_PER_CHUNK - 1) // ROWS_PER_CHUNK
+    for ch in prange(nchunk):
+        W = np.empty((2, nr + 1))
+        for j in range(j0 + ch * ROWS_PER_CHUNK, min(j1 + 1, j0 + (ch + 1) * ROWS_PER_CHUNK)):
+            base = j * (nr + 1)
+            if j == 0 or j == nz:
+                for i in range(nr + 1):
+                    _edge_node(base + i, i, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash,
+                               zp, zs, W)
+            else:
+                _edge_node(base, 0, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W)
+                _edge_node(base + nr, nr, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash,
+                           zp, zs, W)
+                un = np.uint64(nr)
+                ub = np.uint64(base)
+                ue = np.uint64(j) * un
+                for i in range(_ONE, un):
+                    n = ub + i
+                    ea = ue + i          # element (i, j): the node is its corner 1
+                    eb = ea - _ONE       # element (i - 1, j): corner 2
+                    ec = eb - un         # element (i - 1, j - 1): corner 3
+                    ed = ea - un         # element (i, j - 1): corner 4
+                    fr = ((F[0, ea] if alive[ea] == 1 else 0.0) + (F[2, eb] if alive[eb] == 1 else 0.0)
+                          + (F[4, ec] if alive[ec] == 1 else 0.0) + (F[6, ed] if alive[ed] == 1 else 0.0))
+                    fz = ((F[1, ea] if alive[ea] == 1 else 0.0) + (F[3, eb] if alive[eb] == 1 else 0.0)
+                          + (F[5, ec] if alive[ec] == 1 else 0.0) + (F[7, ed] if alive[ed] == 1 else 0.0))
+                    ur, uz = vr[n], vz[n]
+                    u1, w1, pw, fb = _node_velocity(ur, uz, fr, fz, mass[n], dtv, dash[0, n], dash[1, n], dash[2, n],
+                                                    fix[n], zp, zs)
+                    keep = nstate[n] < 2
+                    vr0[n] = ur
+                    vz0[n] = uz
+                    vr[n] = u1 if keep else ur
+                    vz[n] = w1 if keep else uz
+                    W[0, i] = pw if keep else 0.0
+                    W[1, i] = fb if keep else 0.0
+            pw = 0.0
+            fb = 0.0
+            for i in range(nr + 1):
+                pw -= W[0, i]
+                fb += W[1, i]
+            rowbnd[0, j] = pw
+            rowbnd[1, j] = fb
 
 
 @njit(parallel=True, cache=True)
-def move(r, z, vr, vz, nstate, dt):
-    for n in prange(r.size):
+def move(r, z, vr, vz, nstate, dt, n0, n1):
+    """x += dt v for the nodes n0 <= n < n1 that are not dropped (the window's node rows: every node outside
+    them is retired or not yet active)."""
+    for k in prange(n1 - n0):
+        n = n0 + k
         if nstate[n] < 2:
             r[n] += dt * vr[n]
             z[n] += dt * vz[n]
 
 
 @njit(cache=True)
-def contact(r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, dt, Zt, V, V0, M, zeta, rho, rho_max, mu_f, buf_i, buf):
-    """Kinematic contact of the target nodes with the rigid projectile (tip at z = Zt, moving +z at V).
+def contact(r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, dt, Zt, V, V0, M, zeta, rho, rho_max, mu_f, buf_i, buf, n0, n1):
+    """Kinematic contact of the target nodes n0 <= n < n1 with the rigid projectile (tip at z = Zt, moving +z at V).
 
     Nodes whose predicted positions lie inside the body are moved onto its
     surface (closest point of the outline; along the axis for nodes on it)
@@ -483,7 +547,7 @@ def contact(r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, dt, Zt, V, V0, M, zet
     Lb = zeta[-1]
     K = zeta.size
     m_act = 0
-    for n in range(r.size):
+    for n in range(n0, n1):  # the window's nodes (every other node is retired or not yet active)
         if nstate[n] >= 2:
             continue
         rp = r[n] + dt * vr[n]

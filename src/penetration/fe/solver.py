@@ -373,11 +373,12 @@ def _advance(nr, nz, j0, j1, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, a
         fmax = 0.0
         if proj[4] > 0.5:
             V1, imp, loss, nc, fmax = K_contact(r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, dt, proj[0], proj[1],
-                                                proj[1], proj[2], zeta, rho, rho_max, proj[3], buf_i, buf)
+                                                proj[1], proj[2], zeta, rho, rho_max, proj[3], buf_i, buf,
+                                                j0 * (nr + 1), (j1 + 1) * (nr + 1))
             acc[2] += loss
             proj[1] = V1
             proj[0] += dt * V1
-        K_move(r, z, vr, vz, nstate, dt)
+        K_move(r, z, vr, vz, nstate, dt, j0 * (nr + 1), (j1 + 1) * (nr + 1))
         ctl[0] = dt
         K_element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail)
         acc[0] += rowhg.sum()

@@ -295,3 +295,41 @@ def fe_contrasts(inputs, outputs, params):
     for ax in axes:
         ax.legend(fontsize=6)
     save(fig, outputs.png, params.dpi)
+
+
+CONVERGENCE_NOSES = {"DO/CRH 4.5": ("double_ogive", "crh45"), "CRH 4.5/CRH 3": ("crh45", "crh3"),
+                     "DO/CRH 3": ("double_ogive", "crh3")}
+
+
+@task
+def fe_contrast_convergence(inputs, outputs, params):
+    """The FE nose contrasts of Table 3 at three meshes (each with its own DO1 calibration): converged or not."""
+    rows = []
+    for ratios_path, table_path, cal_path in zip(inputs.ratios, inputs.tables, inputs.calibrations):
+        cal = load_json(cal_path)
+        t3 = pd.read_csv(table_path)
+        depth = {(int(r.velocity_ms), r.nose): r.fe_m for r in t3.itertuples()}
+        for r in pd.read_csv(ratios_path).itertuples():
+            if r.contrast not in CONVERGENCE_NOSES:
+                continue
+            num, den = CONVERGENCE_NOSES[r.contrast]
+            v = int(r.velocity_ms)
+            rows.append({"elements_across_radius": cal["elements_across_radius"], "element_size_m": cal["element_size"],
+                         "failure_strain": cal["fs"], "velocity_ms": v, "contrast": r.contrast, "fe_ratio": r.fe_ratio,
+                         "paper_sim_ratio": r.paper_sim_ratio, "difference_points": 100 * (r.fe_ratio - r.paper_sim_ratio),
+                         "depth_num_m": depth[(v, num)], "depth_den_m": depth[(v, den)]})
+    t = pd.DataFrame(rows).sort_values(["contrast", "velocity_ms", "elements_across_radius"])
+    write_csv(t, outputs.csv)
+    fig, axes = figure(3, 3.5, 3.4)
+    for ax, (name, g) in zip(axes, t.groupby("contrast", sort=False)):
+        for k, (v, gv) in enumerate(g.groupby("velocity_ms")):
+            c = f"C{k}"
+            ax.plot(gv.elements_across_radius, 100 * (gv.fe_ratio - 1), marker="o", ms=3, color=c, label=f"{v} m/s (ours)")
+            ax.plot([gv.elements_across_radius.max() * 1.06], [100 * (gv.paper_sim_ratio.iloc[0] - 1)],
+                    **{**PAPER_STYLE, "color": c}, label=f"{v} m/s (paper's simulation)")
+        ax.axhline(0, color="black", lw=0.5)
+        ax.set(xlabel="elements across the shank radius", ylabel="depth gain (%)",
+               title=f"{name}: FE level against mesh", xscale="log")
+        ax.set_xticks(sorted(t.elements_across_radius.unique()), [f"{x:.0f}" for x in sorted(t.elements_across_radius.unique())])
+        ax.legend(fontsize=5.5, ncol=2)
+    save(fig, outputs.png, params.dpi)
