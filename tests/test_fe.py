@@ -180,6 +180,26 @@ def test_penetration_audit_closes_and_momentum_is_conserved():
     assert 0 < p.V < 835.0 and p.Zt > 0.5
 
 
+def test_a_shot_is_bit_identical_on_one_and_two_threads():
+    """Rows are independent tasks and no kernel reassociates a sum: the thread count cannot change a result (the
+    discrete erosion is chaotic, so anything less than bit-identity would show as a different depth)."""
+    import numba
+
+    n0 = numba.get_num_threads()
+    out = []
+    try:
+        for threads in (1, min(2, numba.config.NUMBA_NUM_THREADS)):
+            numba.set_num_threads(threads)
+            m, p, res = _penetration(Ogive(3.0, 0.07), 835.0, end=1e-3)
+            out.append((p.Zt, p.V, m.E.copy(), m.vz.copy(), m.alive.copy()))
+    finally:
+        numba.set_num_threads(n0)
+    (z1, v1, E1, w1, a1), (z2, v2, E2, w2, a2) = out
+    assert z1 == z2 and v1 == v2 and np.array_equal(a1, a2)
+    assert np.array_equal(E1, E2) and np.array_equal(w1, w2)
+    assert (a1 == 0).sum() > 0  # elements eroded: the chaotic path was exercised
+
+
 @pytest.mark.parametrize("nose,v", [(Flat(0.07), 300.0), (Ogive(0.5, 0.07), 1500.0), (Ogive(3.0, 0.07), 1500.0)])
 def test_hard_shots_stay_finite(nose, v):
     """A flat and a hemispherical nose, 300 and 1500 m/s: finite results and a closed audit (guards on)."""
