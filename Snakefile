@@ -54,10 +54,7 @@ def fe_calibration(profile):
 # the convergence of the nose contrasts over the ci, full and fine meshes (with the full profile only)
 FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv"] if "full" in FE_PROFILES else []
 if FE_CONVERGENCE:
-    config["check"]["outputs"]["figures/fe/contrast_convergence.csv"] = {
-        "default": "fe_ratio", "columns": {"velocity_ms": "transcribed", "elements_across_radius": "round_off",
-                                            "element_size_m": "round_off", "paper_sim_ratio": "transcribed",
-                                            "failure_strain": "fe_depth", "depth_num_m": "fe_depth", "depth_den_m": "fe_depth"}}
+    config["check"]["outputs"].update(config["check"]["full_only"])
 
 
 include: "workflow/rules/geometry.smk"
