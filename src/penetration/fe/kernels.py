@@ -121,8 +121,9 @@ _ONE = np.uint64(1)
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
 def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, S):
     """Phase 1 of a row, branch-free (vectorised): strain rates, spin, volume ratio, length; for HJC the
-    no-crush update (hjc.quick_update: no plastic flow, or fully damaged outside compression), its energy, viscosity and stable step, stored into E where
-    valid. Unsigned indices: numba then emits no negative-index wrap-around and the loop vectorises."""
+    no-crush update (hjc.quick_update: no plastic flow, or fully damaged outside compression), its energy,
+    viscosity and stable step, stored into E where valid. Unsigned indices: numba then emits no negative-index
+    wrap-around and the loop vectorises."""
     h = 0.5 * dt
     un = np.uint64(nr)
     b = np.uint64(j) * (un + _ONE)
@@ -421,6 +422,21 @@ def _node_velocity(ur, uz, fr, fz, m, dtv, da, nr_, nz_, fx, zp, zs):
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W):
+    """Store node n's new velocity (its old one in vr0, vz0; dropped nodes keep theirs) and its dashpot's
+    power and axial force in W[:, i]."""
+    ur, uz = vr[n], vz[n]
+    u1, w1, pw, fb = _node_velocity(ur, uz, fr, fz, mass[n], dtv, dash[0, n], dash[1, n], dash[2, n], fix[n], zp, zs)
+    keep = nstate[n] < 2
+    vr0[n] = ur
+    vz0[n] = uz
+    vr[n] = u1 if keep else ur
+    vz[n] = w1 if keep else uz
+    W[0, i] = pw if keep else 0.0
+    W[1, i] = fb if keep else 0.0
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _edge_node(n, i, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W):
     """_node_velocity for a node on an edge of the grid (fewer than four elements around it)."""
     fr = 0.0
@@ -445,15 +461,7 @@ def _edge_node(n, i, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, f
         if alive[e] == 1:
             fr += F[6, e]
             fz += F[7, e]
-    ur, uz = vr[n], vz[n]
-    u1, w1, pw, fb = _node_velocity(ur, uz, fr, fz, mass[n], dtv, dash[0, n], dash[1, n], dash[2, n], fix[n], zp, zs)
-    keep = nstate[n] < 2
-    vr0[n] = ur
-    vz0[n] = uz
-    vr[n] = u1 if keep else ur
-    vz[n] = w1 if keep else uz
-    W[0, i] = pw if keep else 0.0
-    W[1, i] = fb if keep else 0.0
+    _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W)
 
 
 @njit(parallel=True, cache=True, error_model="numpy")
@@ -495,16 +503,7 @@ def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix
                           + (F[4, ec] if alive[ec] == 1 else 0.0) + (F[6, ed] if alive[ed] == 1 else 0.0))
                     fz = ((F[1, ea] if alive[ea] == 1 else 0.0) + (F[3, eb] if alive[eb] == 1 else 0.0)
                           + (F[5, ec] if alive[ec] == 1 else 0.0) + (F[7, ed] if alive[ed] == 1 else 0.0))
-                    ur, uz = vr[n], vz[n]
-                    u1, w1, pw, fb = _node_velocity(ur, uz, fr, fz, mass[n], dtv, dash[0, n], dash[1, n], dash[2, n],
-                                                    fix[n], zp, zs)
-                    keep = nstate[n] < 2
-                    vr0[n] = ur
-                    vz0[n] = uz
-                    vr[n] = u1 if keep else ur
-                    vz[n] = w1 if keep else uz
-                    W[0, i] = pw if keep else 0.0
-                    W[1, i] = fb if keep else 0.0
+                    _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W)
             pw = 0.0
             fb = 0.0
             for i in range(nr + 1):
