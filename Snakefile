@@ -31,6 +31,7 @@ wildcard_constraints:
     size=r"[0-9.]+",
     nose=r"[a-z0-9_]+",
     velocity=r"[0-9.]+",
+    member=r"[0-9]+",
 
 # FE outputs: `all` builds the configured profile and, for `full`, the CI's coarse profile too.
 FE_PROFILES = ["full", "ci"] if config["fe_profile"] == "full" else ["ci"]
@@ -52,7 +53,9 @@ def fe_calibration(profile):
 
 
 # the convergence of the nose contrasts over the ci, full and fine meshes (with the full profile only)
-FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv"] if "full" in FE_PROFILES else []
+FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
+                  "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv",
+                  "figures/fe/contrast_ensemble_depths.csv"] if "full" in FE_PROFILES else []
 if FE_CONVERGENCE:
     config["check"]["outputs"].update(config["check"]["full_only"])
 

@@ -210,3 +210,37 @@ rule fe_contrast_convergence:
     benchmark: "results/benchmarks/fe_contrast_convergence.tsv"
     log: "results/logs/fe_contrast_convergence.log",
     script: "../scripts/run_task.py"
+
+
+def fe_ensemble_members(profile):
+    """Every (nose, velocity, member) of the Table 3 ensemble: member 0 is the profile's own Table 3 shot."""
+    n = config["fe_ensemble"]["members"]
+    return [(nose, v, k) for nose, v in FE_SCENES["table3"] for k in range(1, n + 1)]
+
+
+rule fe_ensemble_shot:
+    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
+           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/table3.yaml", schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/ensemble/{nose}_{velocity}_m{member}.json",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
+            velocity=lambda w: w.velocity, member=lambda w: w.member,
+            velocity_step=config["fe_ensemble"]["velocity_step"],
+    threads: 2
+    resources: mem_mb=2000, runtime=30
+    benchmark: "results/benchmarks/fe_ensemble_shot_{profile}_{nose}_{velocity}_m{member}.tsv"
+    log: "results/logs/fe_ensemble_shot_{profile}_{nose}_{velocity}_m{member}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_contrast_ensemble:
+    input: **task("figures.fe_level"), ratios="figures/fe/full/table3_ratios.csv", table="figures/fe/full/table3.csv",
+           shots=[f"results/fe/full/table3/{nose}_{v}.json" for nose, v in FE_SCENES["table3"]],
+           members=[f"results/fe/full/ensemble/{nose}_{v}_m{k}.json" for nose, v, k in fe_ensemble_members("full")],
+    output: png="figures/fe/contrast_ensemble.png", csv="figures/fe/contrast_ensemble.csv",
+            depths="figures/fe/contrast_ensemble_depths.csv",
+    params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_contrast_ensemble.tsv"
+    log: "results/logs/fe_contrast_ensemble.log",
+    script: "../scripts/run_task.py"

@@ -339,3 +339,68 @@ def fe_contrast_convergence(inputs, outputs, params):
                  fontsize=9)
     fig.subplots_adjust(bottom=0.3, wspace=0.3, top=0.82)
     save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_contrast_ensemble(inputs, outputs, params):
+    """Realisations of the erosion chaos at the full mesh: the spread of each Table 3 depth and nose contrast.
+
+    Member 0 is the Table 3 shot; members k >= 1 the same shot struck at
+    v (1 + k step). Ratios pair the members of equal k. The interval of a mean
+    is Student's t at the configured confidence over the realisations.
+    """
+    from scipy import stats
+
+    depth, sizes = {}, set()
+    for path in [*inputs.shots, *inputs.members]:
+        s = load_json(path)
+        sizes.add(s["element_size"])
+        depth.setdefault((s["nose"], int(round(s["velocity"]))), {})[int(s.get("member", 0))] = s["depth_m"]
+    paper = {(r.nose, int(r.velocity_ms)): r.paper_sim_m for r in pd.read_csv(inputs.table).itertuples()}
+    drows = []
+    for (nose, v), d in sorted(depth.items()):
+        x = np.array([d[k] for k in sorted(d)])
+        drows.append({"velocity_ms": v, "nose": nose, "realisations": x.size, "depth_member0_m": d[0], "mean_m": x.mean(),
+                      "std_m": x.std(ddof=1), "rel_std_pct": 100 * x.std(ddof=1) / x.mean(), "min_m": x.min(),
+                      "max_m": x.max(), "paper_sim_m": paper[(nose, v)]})
+    if len(sizes) != 1:
+        raise ValueError(f"ensemble members at element sizes {sorted(sizes)}; allowed: one mesh")
+    write_csv(pd.DataFrame(drows), outputs.depths)
+    paper_ratio = {(r.contrast, int(r.velocity_ms)): r.paper_sim_ratio for r in pd.read_csv(inputs.ratios).itertuples()}
+    rows, members = [], {}
+    for name, (num, den) in CONVERGENCE_NOSES.items():
+        for v in sorted({v for _, v in depth}):
+            a, b = depth[(num, v)], depth[(den, v)]
+            x = np.array([a[k] / b[k] for k in sorted(a) if k in b])
+            members[(name, v)] = x
+            half = stats.t.ppf(0.5 + params.confidence / 2, x.size - 1) * x.std(ddof=1) / math.sqrt(x.size)
+            p = paper_ratio[(name, v)]
+            rows.append({"contrast": name, "velocity_ms": v, "realisations": x.size, "ratio_member0": x[0],
+                         "mean_ratio": x.mean(), "std_ratio": x.std(ddof=1), "min_ratio": x.min(), "max_ratio": x.max(),
+                         "interval_low": x.mean() - half, "interval_high": x.mean() + half, "confidence": params.confidence,
+                         "paper_sim_ratio": p, "mean_minus_paper_points": 100 * (x.mean() - p),
+                         "paper_inside_interval": bool(x.mean() - half <= p <= x.mean() + half)})
+    t = pd.DataFrame(rows)
+    write_csv(t, outputs.csv)
+    fig, axes = figure(3, 3.6, 3.6)
+    for ax, name in zip(axes, CONVERGENCE_NOSES):
+        g = t[t.contrast == name]
+        for k, r in enumerate(g.itertuples()):
+            x = members[(name, r.velocity_ms)]
+            ax.plot(np.full(x.size, k - 0.12), 100 * (x - 1), "o", ms=3, color="tab:blue", alpha=0.6,
+                    label="realisations (ours)" if k == 0 else None)
+            ax.errorbar([k + 0.05], [100 * (r.mean_ratio - 1)],
+                        yerr=[[100 * (r.mean_ratio - r.interval_low)], [100 * (r.interval_high - r.mean_ratio)]],
+                        fmt="s", ms=4, color="tab:blue", capsize=3,
+                        label=f"mean, {100 * params.confidence:.0f} % interval (ours)" if k == 0 else None)
+            ax.plot([k + 0.25], [100 * (r.paper_sim_ratio - 1)], **PAPER_STYLE, label="paper's simulation" if k == 0 else None)
+        ax.axhline(0, color="black", lw=0.5)
+        ax.set_xticks(range(len(g)), [f"{v}" for v in g.velocity_ms])
+        ax.set(xlabel="striking velocity (m/s)", ylabel="depth gain (%)", title=f"{name}: FE level, full mesh")
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, bbox_to_anchor=(0.5, -0.02))
+    n = int(t.realisations.iloc[0])
+    fig.suptitle(f"Nose contrasts of Table 3 at the FE level over {n} realisations of the erosion chaos "
+                 f"(element size {1e3 * min(sizes):.3g} mm)", fontsize=9)
+    fig.subplots_adjust(bottom=0.25, wspace=0.3, top=0.84)
+    save(fig, outputs.png, params.dpi)

@@ -90,9 +90,9 @@ def calibrate_fe_do1(inputs, outputs, params):
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
 
 
-@task
-def fe_shot(inputs, outputs, params):
-    """One nose at one velocity of an FE scene: depth, deceleration, audit, histories and the final fields."""
+def _scene_shot(inputs, params, velocity_factor=1.0, log=print):
+    """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor); returns (summary, result,
+    settings, scene)."""
     refs = reference.load_reference(inputs.reference)
     sc = scene_from_inputs(inputs, FE)
     _check_table1_target(sc, refs)
@@ -114,13 +114,20 @@ def fe_shot(inputs, outputs, params):
     if fs is not None:
         settings = with_failure_strain(settings, float(fs))
     expected = expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho)
-    lines = []
-    r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg), expected_depth=expected,
-                 friction=sc.friction, keep_model=True, log=lambda s: (lines.append(s), print(s, flush=True)))
+    r = run_shot(nose, sc.mass, v * velocity_factor, material, settings, _target(sc.fe, cfg), expected_depth=expected,
+                 friction=sc.friction, keep_model=True, log=lambda s: log(s, flush=True))
     summary = {"scene": sc.name, "nose": params.nose, "velocity": v, "mass": sc.mass, "profile": params.profile,
                "element_size": settings.element_size, "failure_strain": fs, "failure_strain_provenance": provenance,
                "target": dataclasses.asdict(_target(sc.fe, cfg)), "material_switches": switches,
                "expected_depth_m": expected, "cutoff_hz": settings.cutoff, **r.summary()}
+    return summary, r, settings, sc
+
+
+@task
+def fe_shot(inputs, outputs, params):
+    """One nose at one velocity of an FE scene: depth, deceleration, audit, histories and the final fields."""
+    summary, r, settings, sc = _scene_shot(inputs, params)
+    cfg = params.cfg
     h = r.histories
     # depth and velocity sampled on the deceleration bins (impulse-conserving bin sums of the contact force)
     tb, raw = binned(h["t"], h["contact_force"], sc.mass, settings.bin_width)
@@ -139,6 +146,27 @@ def fe_shot(inputs, outputs, params):
     write_csv(hist, outputs.histories)
     write_csv(fields[core & (fields.z0 < r.depth + 1.0)], outputs.fields)
     write_json(summary, outputs.json)
+
+
+@task
+def fe_ensemble_shot(inputs, outputs, params):
+    """A realisation of a shot's erosion chaos: the shot at v (1 + member x velocity_step).
+
+    The element erosion makes the FE depth chaotic (a change of the striking
+    velocity far below any physical effect moves it by a few tenths of a per
+    cent); the members measure that spread. The velocity change itself moves
+    the depth by at most 2 x member x velocity_step of it (DOP grows at most as v^2).
+    """
+    member, step = int(params.member), float(params.velocity_step)
+    if member < 1:
+        raise ValueError(f"ensemble member {member}; allowed: >= 1 (member 0 is the shot itself)")
+    if not 0.0 < step <= 1e-6:
+        raise ValueError(f"fe_ensemble.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
+                         "the chaos, not a change of the shot)")
+    factor = 1.0 + member * step
+    summary, r, settings, sc = _scene_shot(inputs, params, factor)
+    write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor},
+               outputs.json)
 
 
 @task
