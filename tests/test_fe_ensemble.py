@@ -38,7 +38,7 @@ def test_ensemble_statistics_against_hand_values(tmp_path):
     fe_contrast_ensemble(inputs, outputs, SimpleNamespace(dpi=50, confidence=0.95))
     t = pd.read_csv(outputs.csv).set_index("contrast")
     r = t.loc["DO/CRH 4.5"]
-    assert r.realisations == 3 and r.ratio_member0 == pytest.approx(1.0)
+    assert r.realisations == 3 and r.ratio_member0 == pytest.approx(1.0) and r.element_size_m == 0.00875
     assert r.mean_ratio == pytest.approx(1.1) and r.std_ratio == pytest.approx(0.1)
     half = 4.302652729749464 * 0.1 / math.sqrt(3)  # Student's t, 2 degrees of freedom, 97.5 % quantile
     assert r.interval_low == pytest.approx(1.1 - half) and r.interval_high == pytest.approx(1.1 + half)

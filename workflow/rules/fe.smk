@@ -202,7 +202,7 @@ rule fe_contrast_convergence:
     input: **task("figures.fe_level"), reference=config["reference"],
            ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=["ci", "full", "fine"]),
            tables=expand("figures/fe/{profile}/table3.csv", profile=["ci", "full", "fine"]),
-           calibrations=[fe_calibration(p) for p in ("ci", "full", "fine")],
+           calibrations=[fe_calibration(p) for p in ("ci", "full", "fine")], ensemble="figures/fe/contrast_ensemble.csv",
     output: png="figures/fe/contrast_convergence.png", csv="figures/fe/contrast_convergence.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1

@@ -303,10 +303,13 @@ CONVERGENCE_NOSES = {"DO/CRH 4.5": ("double_ogive", "crh45"), "CRH 4.5/CRH 3": (
 
 @task
 def fe_contrast_convergence(inputs, outputs, params):
-    """The FE nose contrasts of Table 3 at three meshes (each with its own DO1 calibration): converged or not."""
+    """The FE nose contrasts of Table 3 at three meshes (each with its own DO1 calibration): converged or not,
+    beside the interval of the erosion chaos at the mesh of the ensemble (fe_contrast_ensemble)."""
     rows = []
+    across = {}
     for ratios_path, table_path, cal_path in zip(inputs.ratios, inputs.tables, inputs.calibrations):
         cal = load_json(cal_path)
+        across[round(cal["element_size"], 12)] = cal["elements_across_radius"]
         t3 = pd.read_csv(table_path)
         depth = {(int(r.velocity_ms), r.nose): r.fe_m for r in t3.itertuples()}
         for r in pd.read_csv(ratios_path).itertuples():
@@ -320,6 +323,7 @@ def fe_contrast_convergence(inputs, outputs, params):
                          "depth_num_m": depth[(v, num)], "depth_den_m": depth[(v, den)]})
     t = pd.DataFrame(rows).sort_values(["contrast", "velocity_ms", "elements_across_radius"])
     write_csv(t, outputs.csv)
+    ens = pd.read_csv(inputs.ensemble)
     fig, axes = figure(3, 3.6, 3.6)
     ticks = sorted(t.elements_across_radius.unique())
     for ax, name in zip(axes, CONVERGENCE_NOSES):
@@ -327,6 +331,12 @@ def fe_contrast_convergence(inputs, outputs, params):
         for k, (v, gv) in enumerate(g.groupby("velocity_ms")):
             c = f"C{k}"
             ax.plot(gv.elements_across_radius, 100 * (gv.fe_ratio - 1), marker="o", ms=3, color=c, label=f"{v} m/s (ours)")
+            e = ens[(ens.contrast == name) & (ens.velocity_ms == v)].iloc[0]
+            lo, hi = 100 * (e.interval_low - 1), 100 * (e.interval_high - 1)
+            ax.errorbar([across[round(e.element_size_m, 12)] + 0.15 * (k - 1.5)], [(lo + hi) / 2], yerr=[(hi - lo) / 2],
+                        fmt="none", color=c, capsize=2, lw=1,
+                        label=f"{100 * e.confidence:.0f} % interval of the mean over {e.realisations} realisations"
+                        if k == 0 and name == next(iter(CONVERGENCE_NOSES)) else None)
             ax.plot([max(ticks) + 0.6 + 0.25 * k], [100 * (gv.paper_sim_ratio.iloc[0] - 1)], **{**PAPER_STYLE, "color": c},
                     label=f"{v} m/s (paper's simulation)")
         ax.axhline(0, color="black", lw=0.5)
@@ -375,7 +385,8 @@ def fe_contrast_ensemble(inputs, outputs, params):
             members[(name, v)] = x
             half = stats.t.ppf(0.5 + params.confidence / 2, x.size - 1) * x.std(ddof=1) / math.sqrt(x.size)
             p = paper_ratio[(name, v)]
-            rows.append({"contrast": name, "velocity_ms": v, "realisations": x.size, "ratio_member0": x[0],
+            rows.append({"contrast": name, "velocity_ms": v, "element_size_m": min(sizes), "realisations": x.size,
+                         "ratio_member0": x[0],
                          "mean_ratio": x.mean(), "std_ratio": x.std(ddof=1), "min_ratio": x.min(), "max_ratio": x.max(),
                          "interval_low": x.mean() - half, "interval_high": x.mean() + half, "confidence": params.confidence,
                          "paper_sim_ratio": p, "mean_minus_paper_points": 100 * (x.mean() - p),
