@@ -213,9 +213,9 @@ rule fe_contrast_convergence:
 
 
 def fe_ensemble_members(profile):
-    """Every (nose, velocity, member) of the Table 3 ensemble: member 0 is the profile's own Table 3 shot."""
+    """The JSONs of the Table 3 ensemble's members k >= 1 at a profile (member 0 is the profile's own Table 3 shot)."""
     n = config["fe_ensemble"]["members"]
-    return [(nose, v, k) for nose, v in FE_SCENES["table3"] for k in range(1, n + 1)]
+    return [f"results/fe/{profile}/ensemble/{nose}_{v}_m{k}.json" for nose, v in FE_SCENES["table3"] for k in range(1, n + 1)]
 
 
 rule fe_ensemble_shot:
@@ -234,8 +234,7 @@ rule fe_ensemble_shot:
 
 rule fe_contrast_ensemble:
     input: **task("figures.fe_level"), ratios="figures/fe/full/table3_ratios.csv", table="figures/fe/full/table3.csv",
-           shots=[f"results/fe/full/table3/{nose}_{v}.json" for nose, v in FE_SCENES["table3"]],
-           members=[f"results/fe/full/ensemble/{nose}_{v}_m{k}.json" for nose, v, k in fe_ensemble_members("full")],
+           shots=[path.format(profile="full") for path in fe_shots("table3")], members=fe_ensemble_members("full"),
     output: png="figures/fe/contrast_ensemble.png", csv="figures/fe/contrast_ensemble.csv",
             depths="figures/fe/contrast_ensemble_depths.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"],

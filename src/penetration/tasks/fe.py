@@ -90,7 +90,7 @@ def calibrate_fe_do1(inputs, outputs, params):
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
 
 
-def _scene_shot(inputs, params, velocity_factor=1.0, log=print):
+def _scene_shot(inputs, params, velocity_factor=1.0):
     """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor); returns (summary, result,
     settings, scene)."""
     refs = reference.load_reference(inputs.reference)
@@ -115,7 +115,7 @@ def _scene_shot(inputs, params, velocity_factor=1.0, log=print):
         settings = with_failure_strain(settings, float(fs))
     expected = expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho)
     r = run_shot(nose, sc.mass, v * velocity_factor, material, settings, _target(sc.fe, cfg), expected_depth=expected,
-                 friction=sc.friction, keep_model=True, log=lambda s: log(s, flush=True))
+                 friction=sc.friction, keep_model=True, log=lambda s: print(s, flush=True))
     summary = {"scene": sc.name, "nose": params.nose, "velocity": v, "mass": sc.mass, "profile": params.profile,
                "element_size": settings.element_size, "failure_strain": fs, "failure_strain_provenance": provenance,
                "target": dataclasses.asdict(_target(sc.fe, cfg)), "material_switches": switches,
