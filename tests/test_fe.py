@@ -22,7 +22,7 @@ def _residual(m):
     """Nodal force sum (r, z) of the element forces, by the solver's own gather."""
     vr, vz = np.zeros_like(m.vr), np.zeros_like(m.vz)
     K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, np.ones_like(m.mass), vr, vz, np.zeros_like(vr), np.zeros_like(vz),
-                m.nstate, 1.0, np.zeros_like(m.fix), m.dash, 0.0, 0.0, m.rowbnd)
+                m.nstate, 1.0, np.zeros_like(m.fix), m.dash, m.rowdash, 0.0, 0.0, m.rowbnd)
     return -vr, -vz
 
 
@@ -293,3 +293,52 @@ def test_failure_strain_calibration_finds_the_root_of_a_noisy_decreasing_depth(m
     assert len(fit["runs"]) <= 10
     with pytest.raises(ValueError, match="no failure strain"):
         fe_level.calibrate_failure_strain(None, 81.1, 835.0, 5.1, None, Settings(), bracket=(1.5, 3.0), log=None)
+
+
+def test_node_pass_without_dashpot_arithmetic_gives_the_same_velocities():
+    """Rows flagged dashpot-free take a leaner loop: bit for bit the velocities of the full dashpot arithmetic."""
+    m = Model(build(MeshSpec(0.05, 0.2, 1.0, 0.6, 1.2, 1.2)), HJC(), Controls(lateral="non_reflecting", bottom="non_reflecting"))
+    g = m.grid
+    m._dashpots(7 * (g.nr + 1) + np.arange(g.nr + 1))   # a window's bottom row inside the grid
+    assert list(np.nonzero(m.rowdash)[0]) == [7, g.nz]  # the bottom face is a grid edge: its flag is never read
+    rng = np.random.default_rng(5)
+    F = rng.standard_normal(m.F.shape)
+    m.fix[:] = rng.integers(0, 4, m.fix.size)         # every fixity and dropped nodes, inside the rows too
+    m.nstate[:] = 2 * rng.integers(0, 2, m.nstate.size)
+    out = []
+    for flags in (m.rowdash, np.ones_like(m.rowdash)):
+        vr, vz = np.sin(np.arange(m.vr.size)), np.cos(np.arange(m.vz.size))
+        vr[m.on_axis] = 0.0
+        vr0, vz0, rowbnd = np.zeros_like(vr), np.zeros_like(vz), np.zeros_like(m.rowbnd)
+        K.node_pass(m.nr, m.nz, 0, m.nz, F, m.alive, m.mass, vr, vz, vr0, vz0, m.nstate, 1e-6, m.fix, m.dash, flags,
+                    m.zp, m.zs, rowbnd)
+        out.append((vr, vz, rowbnd))
+    for a, b in zip(out[0], out[1]):
+        assert np.array_equal(a, b)
+    assert np.all(out[0][2][0, [7, g.nz]] != 0.0)  # the dashpots absorbed power where they are
+
+
+@pytest.mark.parametrize("case", ["erosion", "floor", "non_finite"])
+def test_elastic_elements_of_the_vectorised_update_are_still_checked(case):
+    """Elements completed by the branch-free HJC update (elastic here) still erode, hit the step floor, or report a
+    non-finite state."""
+    controls = {"erosion": Controls(erosion="effective_strain", erosion_value=1e-12),
+                "floor": Controls(guard=False, dt_floor=1.0), "non_finite": Controls()}[case]
+    m = Model(build(MeshSpec(0.05, 0.2, 1.0, 0.6, 1.2, 1.2)), HJC(), controls)
+    m.vz[:] = -1e-3 * m.z   # a uniaxial compression far inside the elastic range
+    if case == "floor":
+        m.ctl[K.C_DTMIN] = 2.0 * m.dt0
+    if case == "non_finite":
+        m.E[K.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
+    E0 = m.E.copy()
+    _pass(m, 1e-7)
+    assert np.all(m.E[K.EPSP] == 0.0) and np.all(m.E[K.MUP] == 0.0)  # no flow, no crush: the vectorised update
+    if case == "erosion":
+        assert np.all(m.alive == 2)
+        assert math.isclose(m.rowero.sum(), m.E[K.IE].sum(), rel_tol=1e-12) and m.rowero.sum() > 0
+        assert np.all(m.E[K.IE] > E0[K.IE])
+    elif case == "floor":
+        assert m.rowfail[0] == 0 and m.rowfail[m.nz] == K.DT_COLLAPSE
+    else:
+        assert [j for j in range(m.nz) if m.rowfail[j] >= 0] == [1]
+        assert m.rowfail[1] == m.nr + 5 and m.rowfail[m.nz + 1] == K.NON_FINITE

@@ -283,7 +283,8 @@ def fracture_strain(p, q):
     x = (p + q[I_T]) / q[I_FC]
     if x <= 0.0:
         return q[I_EFMIN]
-    return max(q[I_EFMIN], q[I_D1] * x ** q[I_D2])
+    # IEEE pow gives x ** 1.0 = x exactly: the paper's D2 = 1 needs no power
+    return max(q[I_EFMIN], q[I_D1] * (x if q[I_D2] == 1.0 else x ** q[I_D2]))
 
 
 N_CHORDS = 14

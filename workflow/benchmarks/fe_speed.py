@@ -55,8 +55,14 @@ def step_bytes(m: Model):
     """Bytes one explicit step reads and writes, each array once (element pass, node pass, move)."""
     nodes = [m.r, m.z, m.vr, m.vz]
     element = 2 * m.E.nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
+    # the dashpot arrays are read on the grid's edges and in rows flagged in rowdash only
+    g = m.grid
+    edge = np.zeros((g.nz + 1, g.nr + 1), bool)
+    edge[[0, -1], :] = True
+    edge[:, [0, -1]] = True
+    edge[m.rowdash != 0, :] = True
     node = m.F.nbytes + m.alive.nbytes + 2 * (m.vr.nbytes + m.vz.nbytes) + m.mass.nbytes + m.nstate.nbytes + m.fix.nbytes \
-        + m.dash.nbytes
+        + m.dash[:, edge.ravel()].nbytes + m.rowdash.nbytes
     move = 2 * (m.r.nbytes + m.z.nbytes) + m.vr.nbytes + m.vz.nbytes + m.nstate.nbytes
     return element + node + move
 
@@ -69,8 +75,8 @@ def _window_step_time(m: Model, steps):
     dt = float(ctl[K.C_DT])
 
     def step():
-        K.node_pass(m.nr, m.nz, m.j0, m.j1, F, alive, m.mass, vr, vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.zp, m.zs,
-                    rowbnd)
+        K.node_pass(m.nr, m.nz, m.j0, m.j1, F, alive, m.mass, vr, vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.rowdash,
+                    m.zp, m.zs, rowbnd)
         K.move(r, z, vr, vz, m.nstate, dt, m.j0 * (m.nr + 1), (m.j1 + 1) * (m.nr + 1))
         K.element_pass(m.nr, m.nz, m.j0, m.j1, r, z, vr, vz, E, alive, F, m.kind, m.q, ctl, rowdt, rowhg, rowero, rowfail)
 
@@ -98,7 +104,7 @@ def main():
     m.ctl[K.C_DT] = dt
 
     def step():
-        K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash,
+        K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.rowdash,
                     m.zp, m.zs, m.rowbnd)
         K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt, 0, m.r.size)
         K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,

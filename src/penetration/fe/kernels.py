@@ -112,17 +112,18 @@ def _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio):
 # scratch rows of one element row (phase 1 -> phase 2 -> phase 3)
 (S_DRR, S_DZZ, S_DTT, S_DRZ, S_RATE, S_MU, S_TV, S_VH, S_STATE, S_R0, S_R1, S_R3, S_LC, S_C, S_DT, S_HG,
  N_SCRATCH) = range(17)
-# S_STATE: 0 the element is not live, 1 live and done by phase 1 (hjc.quick_update), 2 live, needs the
-# scalar material update, 3 live with an inverted or degenerate geometry
+# S_STATE: 0 the element is not live, 1 live, done by phase 1 (hjc.quick_update) and through phase 2's checks,
+# 2 live, needs the scalar material update, 3 live with an inverted or degenerate geometry, 4 live, done by
+# phase 1 but caught by a check (non-finite, eroding, step below the floor): phase 2 deals with it
 ROWS_PER_CHUNK = 8
 _ONE = np.uint64(1)
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
-def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, S):
+def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, erosion, ev, dtmin, S):
     """Phase 1 of a row, branch-free (vectorised): strain rates, spin, volume ratio, length; for HJC the
     no-crush update (hjc.quick_update: no plastic flow, or fully damaged outside compression), its energy,
-    viscosity and stable step, stored into E where valid. Unsigned indices: numba then emits no negative-index
+    viscosity and stable step, stored into E where valid, and phase 2's checks of these elements. Unsigned indices: numba then emits no negative-index
     wrap-around and the loop vectorises."""
     h = 0.5 * dt
     un = np.uint64(nr)
@@ -194,6 +195,16 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, 
                     + (so3 + n3) * de3 - qv * tv * dt)
         Q = q2 * c + q1 * q1 * lc * abs(tv)
         dte = lc / (Q + math.sqrt(Q * Q + c * c)) if tv < 0.0 else lc / c
+        # phase 2's checks of an element completed here (finite results, no erosion, no step collapse): one that
+        # passes them (state 1) has nothing left for phase 2 but its stable step (the volumetric-tension criterion
+        # is left to phase 2: its division would cost every element)
+        ie_new = E[IE, e] + die
+        ep_new = E[EPSP, e] + dep
+        ee_new = E[EPSEFF, e] + rate * dt
+        gone = (((erosion == 1) & (ep_new >= ev)) | ((erosion == 2) & (ee_new >= ev)) | (erosion == 3)
+                | ((erosion == 4) & (E[DMG, e] >= ev)))
+        clean = (fast & math.isfinite(dte) & math.isfinite(ie_new) & math.isfinite(pn) & math.isfinite(n0) & (not gone)
+                 & (dte >= dtmin))
         E[SRR, e] = n0 if fast else so0
         E[SZZ, e] = n1_ if fast else so1
         E[STT, e] = n2 if fast else so2
@@ -201,9 +212,9 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, 
         E[P, e] = pn if fast else po
         E[MUMAX, e] = mm if fast else E[MUMAX, e]
         E[QV, e] = qv if fast else E[QV, e]
-        E[IE, e] = E[IE, e] + die if fast else E[IE, e]
-        E[EPSEFF, e] = E[EPSEFF, e] + rate * dt if fast else E[EPSEFF, e]
-        E[EPSP, e] = E[EPSP, e] + dep if fast else E[EPSP, e]
+        E[IE, e] = ie_new if fast else E[IE, e]
+        E[EPSEFF, e] = ee_new if fast else E[EPSEFF, e]
+        E[EPSP, e] = ep_new if fast else E[EPSP, e]
         S[S_DRR, i] = drr
         S[S_DZZ, i] = dzz
         S[S_DTT, i] = dtt
@@ -212,13 +223,31 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, 
         S[S_MU, i] = mu_ratio
         S[S_TV, i] = tv
         S[S_VH, i] = Vh
-        S[S_STATE, i] = 1.0 if fast else (0.0 if not live else (2.0 if ok else 3.0))
+        S[S_STATE, i] = (1.0 if clean else 4.0) if fast else (0.0 if not live else (2.0 if ok else 3.0))
         S[S_R0, i] = t0
         S[S_R1, i] = t1
         S[S_R3, i] = t3
         S[S_LC, i] = lc
         S[S_C, i] = c if fast else 0.0
         S[S_DT, i] = dte
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _clean_min(S, nr):
+    """The smallest stable step of a row's state-1 elements, in four interleaved running minima (a minimum is
+    exact in any order; a single chain would wait on each comparison)."""
+    m0 = m1 = m2 = m3 = 1e30
+    i = 0
+    while i + 4 <= nr:
+        m0 = min(m0, S[S_DT, i] if S[S_STATE, i] == 1.0 else 1e30)
+        m1 = min(m1, S[S_DT, i + 1] if S[S_STATE, i + 1] == 1.0 else 1e30)
+        m2 = min(m2, S[S_DT, i + 2] if S[S_STATE, i + 2] == 1.0 else 1e30)
+        m3 = min(m3, S[S_DT, i + 3] if S[S_STATE, i + 3] == 1.0 else 1e30)
+        i += 4
+    while i < nr:
+        m0 = min(m0, S[S_DT, i] if S[S_STATE, i] == 1.0 else 1e30)
+        i += 1
+    return min(min(m0, m1), min(m2, m3))
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
@@ -289,9 +318,10 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
     Rows j0 <= j < j1 only (the active window), in chunks of ROWS_PER_CHUNK
     rows per task. Each row in three phases: a vectorised kinematics pass
     that also completes every HJC element that neither crushes nor flows
-    plastically, or is fully damaged outside compression (hjc.quick_update); a scalar
-    pass with the full material update of the others, the erosion criteria
-    and guards; a vectorised force pass. alive: 1 live, 0 eroded, 3 not
+    plastically, or is fully damaged outside compression (hjc.quick_update),
+    and checks it (finite, not eroding, step above the floor); a scalar pass
+    with the full material update, the erosion criteria and guards of the
+    others; a vectorised force pass. alive: 1 live, 0 eroded, 3 not
     yet active, 4 retired behind the window; an element that erodes in this
     pass is set to 2.
     Per row j: rowdt[j] the smallest stable step, rowhg[j] the hourglass work,
@@ -311,11 +341,11 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
         s6 = np.zeros(6)
         d6 = np.zeros(6)
         for j in range(j0 + ch * ROWS_PER_CHUNK, min(j1, j0 + (ch + 1) * ROWS_PER_CHUNK)):
-            _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, qh_, chords, dt, q1, q2, S)
+            _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, qh_, chords, dt, q1, q2, erosion, ev, dtmin, S)
             dt_row, ero_row, fail, code = 1e30, 0.0, -1, 0
             for i in range(nr):
                 state = S[S_STATE, i]
-                if state == 0.0:
+                if state == 0.0 or state == 1.0:
                     continue
                 e = j * nr + i
                 if state == 3.0:
@@ -386,6 +416,7 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
                     ero_row += E[IE, e]
                     continue
                 dt_row = min(dt_row, dte)
+            dt_row = min(dt_row, _clean_min(S, nr))
             rowhg[j] = _row_forces(j, nr, r, z, vr, vz, E, F, alive, qh, dt, S)
             rowdt[j] = dt_row
             rowero[j] = ero_row
@@ -437,6 +468,39 @@ def _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, z
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _gather(i, ue, un, F, alive):
+    """Force on the interior node i of a row from its four elements (ue: the row's first element)."""
+    ea = ue + i          # element (i, j): the node is its corner 1
+    eb = ea - _ONE       # element (i - 1, j): corner 2
+    ec = eb - un         # element (i - 1, j - 1): corner 3
+    ed = ea - un         # element (i, j - 1): corner 4
+    fr = ((F[0, ea] if alive[ea] == 1 else 0.0) + (F[2, eb] if alive[eb] == 1 else 0.0)
+          + (F[4, ec] if alive[ec] == 1 else 0.0) + (F[6, ed] if alive[ed] == 1 else 0.0))
+    fz = ((F[1, ea] if alive[ea] == 1 else 0.0) + (F[3, eb] if alive[eb] == 1 else 0.0)
+          + (F[5, ec] if alive[ec] == 1 else 0.0) + (F[7, ed] if alive[ed] == 1 else 0.0))
+    return fr, fz
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _free_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, W):
+    """_update_node for a node without a dashpot (the same arithmetic as _node_velocity with da = 0)."""
+    ur, uz = vr[n], vz[n]
+    m = mass[n]
+    u1 = ur - dtv * fr / m
+    w1 = uz - dtv * fz / m
+    fx = fix[n]
+    u1 = 0.0 if (fx & 1) != 0 else u1
+    w1 = 0.0 if (fx & 2) != 0 else w1
+    keep = nstate[n] < 2
+    vr0[n] = ur
+    vz0[n] = uz
+    vr[n] = u1 if keep else ur
+    vz[n] = w1 if keep else uz
+    W[0, i] = 0.0
+    W[1, i] = 0.0
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _edge_node(n, i, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W):
     """_node_velocity for a node on an edge of the grid (fewer than four elements around it)."""
     fr = 0.0
@@ -465,13 +529,14 @@ def _edge_node(n, i, j, nr, nz, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, f
 
 
 @njit(parallel=True, cache=True, error_model="numpy")
-def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd):
+def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, rowdash, zp, zs, rowbnd):
     """Gather element forces (internal + hourglass), add boundary dashpots, update velocities by dtv.
 
     fix[n]: 1 holds v_r = 0 (axis, roller), 2 holds v_z = 0, 3 both. dash[:, n]
     = (area, n_r, n_z): a non-reflecting (Lysmer) dashpot on the node's share
     of the boundary, traction -rho c_p v_n n - rho c_s v_t, taken at the new
-    velocity. rowbnd[0, j]: power absorbed, rowbnd[1, j]: axial force of the
+    velocity; rowdash[j] = 1 where a node of row j off the grid's edges has
+    one (the interior nodes of the other rows skip the dashpot's arithmetic). rowbnd[0, j]: power absorbed, rowbnd[1, j]: axial force of the
     dashpots, per node row. vr0, vz0 receive the velocities before the update
     (for the contact's work). Dropped nodes (nstate >= 2) keep their velocity.
     Interior nodes of a row go through a branch-free (vectorised) loop, with
@@ -493,17 +558,16 @@ def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix
                 un = np.uint64(nr)
                 ub = np.uint64(base)
                 ue = np.uint64(j) * un
-                for i in range(_ONE, un):
-                    n = ub + i
-                    ea = ue + i          # element (i, j): the node is its corner 1
-                    eb = ea - _ONE       # element (i - 1, j): corner 2
-                    ec = eb - un         # element (i - 1, j - 1): corner 3
-                    ed = ea - un         # element (i, j - 1): corner 4
-                    fr = ((F[0, ea] if alive[ea] == 1 else 0.0) + (F[2, eb] if alive[eb] == 1 else 0.0)
-                          + (F[4, ec] if alive[ec] == 1 else 0.0) + (F[6, ed] if alive[ed] == 1 else 0.0))
-                    fz = ((F[1, ea] if alive[ea] == 1 else 0.0) + (F[3, eb] if alive[eb] == 1 else 0.0)
-                          + (F[5, ec] if alive[ec] == 1 else 0.0) + (F[7, ed] if alive[ed] == 1 else 0.0))
-                    _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W)
+                if rowdash[j] != 0:
+                    for i in range(_ONE, un):
+                        n = ub + i
+                        fr, fz = _gather(i, ue, un, F, alive)
+                        _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, W)
+                else:
+                    for i in range(_ONE, un):
+                        n = ub + i
+                        fr, fz = _gather(i, ue, un, F, alive)
+                        _free_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, W)
             pw = 0.0
             fb = 0.0
             for i in range(nr + 1):

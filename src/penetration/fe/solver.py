@@ -122,6 +122,7 @@ class Model:
         self.fix = np.zeros(nn, np.int8)
         self.fix[self.on_axis] |= 1
         self.dash = np.zeros((3, nn))
+        self.rowdash = np.zeros(g.nz + 1, np.int8)  # 1: a node of the row off the grid's edges has a dashpot
         side_i = np.arange(g.nz + 1) * (g.nr + 1) + g.nr     # i = nr (lateral face of a cylinder)
         side_j = g.nz * (g.nr + 1) + np.arange(g.nr + 1)     # j = nz (bottom face)
         for nodes, kind in ((side_i, c.lateral), (side_j, c.bottom)):
@@ -216,6 +217,13 @@ class Model:
         self.dash[0, nodes] += a
         self.dash[1, nodes] = vn[0] / norm
         self.dash[2, nodes] = vn[1] / norm
+        self._mark_dashpot_rows()
+
+    def _mark_dashpot_rows(self):
+        """rowdash from dash (the node pass skips the dashpot's arithmetic in the other rows)."""
+        g = self.grid
+        inner = self.dash[0].reshape(g.nz + 1, g.nr + 1)[:, 1:g.nr]
+        self.rowdash[:] = (inner > 0.0).any(axis=1)
 
     # ------------------------------------------------------------------
     def _initial_dt(self):
@@ -286,6 +294,7 @@ class Model:
             self.rowbnd[:, :self.j0] = 0.0
             self.rowbnd[:, self.j1 + 1:] = 0.0
             self.dash[:] = self.dash_base
+            self._mark_dashpot_rows()
             if self.j1 < g.nz:
                 self._dashpots(self.j1 * (g.nr + 1) + np.arange(g.nr + 1))
 
@@ -334,7 +343,7 @@ class Model:
 
 @njit(cache=True)
 def _advance(nr, nz, j0, j1, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, alive, F, kind, q, ctl, rowdt, rowhg, rowero, rowfail,
-             rowbnd, fix, dash, zp, zs, dt_prev, t, t_stop, dt_factor, proj, zeta, rho, rho_max, buf_i, buf, hist, k0,
+             rowbnd, fix, dash, rowdash, zp, zs, dt_prev, t, t_stop, dt_factor, proj, zeta, rho, rho_max, buf_i, buf, hist, k0,
              acc, presc_i, presc_v, load_i, load_f):
     """Steps until t_stop, the projectile at rest, an erosion (bookkeeping in Python) or a failure.
 
@@ -352,7 +361,7 @@ def _advance(nr, nz, j0, j1, r, z, vr, vz, vr0, vz0, mass, nstate, on_axis, E, a
         dt_new = min(dt_new, 1.2 * dt)
         dtv = 0.5 * (dt + dt_new) if t > 0.0 else dt_new
         dt = dt_new
-        K_node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, zp, zs, rowbnd)
+        K_node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, rowdash, zp, zs, rowbnd)
         acc[1] += rowbnd[0].sum() * dtv
         acc[5] += rowbnd[1].sum() * dtv
         for a in range(load_i.size):
@@ -479,7 +488,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None, log=N
         st, dt, model.t, k_new = _advance(model.nr, model.nz, model.j0, model.j1, model.r, model.z, model.vr, model.vz, vr0, vz0, model.mass,
                                           model.nstate, model.on_axis, model.E, model.alive, model.F, model.kind,
                                           model.q, model.ctl, model.rowdt, model.rowhg, model.rowero, model.rowfail,
-                                          model.rowbnd, model.fix, model.dash, model.zp, model.zs, dt, model.t, t_stop,
+                                          model.rowbnd, model.fix, model.dash, model.rowdash, model.zp, model.zs, dt, model.t, t_stop,
                                           c.dt_factor, proj, zeta, rho, rho_max, buf_i, buf, hist, k, acc,
                                           model.presc_i, model.presc_v, model.load_i, model.load_f)
         model.steps += k_new - k
