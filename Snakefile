@@ -25,9 +25,15 @@ TIMING = ["figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_tra
           "figures/timing/ablation_cavity.csv"]
 
 
+# mesh profiles of the convergence study of the FE nose contrasts (Table 3 only), finer than `full`
+CONVERGENCE_PROFILES = list(config["fe_convergence"]["profiles"])
+if {"full", "ci"} & set(CONVERGENCE_PROFILES):
+    raise ValueError(f"fe_convergence.profiles: {CONVERGENCE_PROFILES}; allowed: names other than full and ci")
+
+
 wildcard_constraints:
     scene=r"[A-Za-z0-9_]+",
-    profile=r"full|ci|fine",
+    profile="|".join(["full", "ci", *CONVERGENCE_PROFILES]),
     size=r"[0-9.]+",
     nose=r"[a-z0-9_]+",
     velocity=r"[0-9.]+",
@@ -41,18 +47,18 @@ config["check"]["outputs"] = {path.format(profile=p): spec for path, spec in con
 
 
 def fe_cfg(profile):
-    """The `fe` config slice for a profile's jobs; the `fine` profile (fe_convergence) joins its profiles."""
-    if profile != "fine":
+    """The `fe` config slice for a profile's jobs; a convergence profile (fe_convergence) joins its profiles."""
+    if profile not in CONVERGENCE_PROFILES:
         return config["fe"]
-    h = config["fe_convergence"]["element_size"]
-    return {**config["fe"], "profiles": {**config["fe"]["profiles"], "fine": {"element_size": h, "mesh_study": [h]}}}
+    h = config["fe_convergence"]["profiles"][profile]
+    return {**config["fe"], "profiles": {**config["fe"]["profiles"], profile: {"element_size": h, "mesh_study": [h]}}}
 
 
 def fe_calibration(profile):
     return f"results/fe/{profile}/calibration_h{fe_cfg(profile)['profiles'][profile]['element_size']}.json"
 
 
-# the convergence of the nose contrasts over the ci, full and fine meshes (with the full profile only)
+# the convergence of the nose contrasts over the ci, full and convergence meshes (with the full profile only)
 FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
                   "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv",
                   "figures/fe/contrast_ensemble_depths.csv"] if "full" in FE_PROFILES else []

@@ -248,3 +248,14 @@ def test_fe_scenes_of_the_pipeline_are_valid():
     shots = fe_scene_shots(ROOT / "workflow/scenes/fe", SCENE_SCHEMA)
     assert set(shots) == {"do1", "do1_block", "table3", "fig15"}
     assert ("double_ogive", "835") in shots["do1"] and len(shots["table3"]) == 12 and len(shots["fig15"]) == 24
+
+
+@pytest.mark.parametrize("profiles,needle", [({"full": 0.005}, "fe_convergence.profiles"),
+                                             ({"fine": 0.0005}, "fe_convergence.profiles.fine"),
+                                             ({"Fine": 0.005}, "fe_convergence.profiles"), ({}, "fe_convergence.profiles")])
+def test_convergence_profiles_are_checked(profiles, needle):
+    """A convergence mesh profile needs a new lower-case name and an element size in (1 mm, 50 mm]."""
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["fe_convergence"]["profiles"] = profiles
+    with pytest.raises(ConfigError, match=needle):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")

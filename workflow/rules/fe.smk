@@ -200,9 +200,10 @@ FE_OUTPUTS += ["contrasts.png", "contrasts.csv"]
 
 rule fe_contrast_convergence:
     input: **task("figures.fe_level"), reference=config["reference"],
-           ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=["ci", "full", "fine"]),
-           tables=expand("figures/fe/{profile}/table3.csv", profile=["ci", "full", "fine"]),
-           calibrations=[fe_calibration(p) for p in ("ci", "full", "fine")], ensemble="figures/fe/contrast_ensemble.csv",
+           ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=["ci", "full", *CONVERGENCE_PROFILES]),
+           tables=expand("figures/fe/{profile}/table3.csv", profile=["ci", "full", *CONVERGENCE_PROFILES]),
+           calibrations=[fe_calibration(p) for p in ("ci", "full", *CONVERGENCE_PROFILES)],
+           ensemble="figures/fe/contrast_ensemble.csv",
     output: png="figures/fe/contrast_convergence.png", csv="figures/fe/contrast_convergence.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1

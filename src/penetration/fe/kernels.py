@@ -123,8 +123,8 @@ _ONE = np.uint64(1)
 def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, erosion, ev, dtmin, S):
     """Phase 1 of a row, branch-free (vectorised): strain rates, spin, volume ratio, length; for HJC the
     no-crush update (hjc.quick_update: no plastic flow, or fully damaged outside compression), its energy,
-    viscosity and stable step, stored into E where valid, and phase 2's checks of these elements. Unsigned indices: numba then emits no negative-index
-    wrap-around and the loop vectorises."""
+    viscosity and stable step, stored into E where valid, and phase 2's checks of these elements. Unsigned
+    indices: numba then emits no negative-index wrap-around and the loop vectorises."""
     h = 0.5 * dt
     un = np.uint64(nr)
     b = np.uint64(j) * (un + _ONE)

@@ -303,7 +303,7 @@ CONVERGENCE_NOSES = {"DO/CRH 4.5": ("double_ogive", "crh45"), "CRH 4.5/CRH 3": (
 
 @task
 def fe_contrast_convergence(inputs, outputs, params):
-    """The FE nose contrasts of Table 3 at three meshes (each with its own DO1 calibration): converged or not,
+    """The FE nose contrasts of Table 3 at several meshes (each with its own DO1 calibration): converged or not,
     beside the interval of the erosion chaos at the mesh of the ensemble (fe_contrast_ensemble)."""
     rows = []
     across = {}
@@ -345,8 +345,8 @@ def fe_contrast_convergence(inputs, outputs, params):
         ax.set_xticks(ticks, [f"{x:.0f}" for x in ticks])
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7, bbox_to_anchor=(0.5, -0.02))
-    fig.suptitle("Nose contrasts of Table 3 at the FE level, three meshes, the failure strain calibrated on DO1 at each",
-                 fontsize=9)
+    fig.suptitle(f"Nose contrasts of Table 3 at the FE level, {len(ticks)} meshes, the failure strain calibrated on DO1 "
+                 "at each", fontsize=9)
     fig.subplots_adjust(bottom=0.3, wspace=0.3, top=0.82)
     save(fig, outputs.png, params.dpi)
 
