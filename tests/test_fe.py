@@ -332,7 +332,7 @@ def test_elastic_elements_of_the_vectorised_update_are_still_checked(case):
         m.E[K.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
     E0 = m.E.copy()
     _pass(m, 1e-7)
-    assert np.all(m.E[K.EPSP] == 0.0) and np.all(m.E[K.MUP] == 0.0)  # no flow, no crush: the vectorised update
+    assert np.all(m.E[K.EPSP] == 0.0) and np.all(m.E[K.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
     if case == "erosion":
         assert np.all(m.alive == 2)
         assert math.isclose(m.rowero.sum(), m.E[K.IE].sum(), rel_tol=1e-12) and m.rowero.sum() > 0

@@ -1,4 +1,5 @@
-# The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles);
+# The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles,
+# or a convergence profile of fe_convergence.profiles);
 # one job per shot (FE runs use both cores: threads 2).
 
 FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)

@@ -536,8 +536,9 @@ def node_pass(nr, nz, j0, j1, F, alive, mass, vr, vz, vr0, vz0, nstate, dtv, fix
     = (area, n_r, n_z): a non-reflecting (Lysmer) dashpot on the node's share
     of the boundary, traction -rho c_p v_n n - rho c_s v_t, taken at the new
     velocity; rowdash[j] = 1 where a node of row j off the grid's edges has
-    one (the interior nodes of the other rows skip the dashpot's arithmetic). rowbnd[0, j]: power absorbed, rowbnd[1, j]: axial force of the
-    dashpots, per node row. vr0, vz0 receive the velocities before the update
+    one (the interior nodes of the other rows skip the dashpot's arithmetic).
+    rowbnd[0, j]: power absorbed, rowbnd[1, j]: axial force of the dashpots,
+    per node row. vr0, vz0 receive the velocities before the update
     (for the contact's work). Dropped nodes (nstate >= 2) keep their velocity.
     Interior nodes of a row go through a branch-free (vectorised) loop, with
     unsigned indices as in the element pass; nodes on the grid's edges one by one.
