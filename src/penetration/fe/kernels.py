@@ -458,6 +458,13 @@ def _update_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, dash, z
     power and axial force in W[:, i]."""
     ur, uz = vr[n], vz[n]
     u1, w1, pw, fb = _node_velocity(ur, uz, fr, fz, mass[n], dtv, dash[0, n], dash[1, n], dash[2, n], fix[n], zp, zs)
+    _store_node(n, i, ur, uz, u1, w1, pw, fb, nstate, vr, vz, vr0, vz0, W)
+
+
+@njit(cache=True, inline="always", error_model="numpy")
+def _store_node(n, i, ur, uz, u1, w1, pw, fb, nstate, vr, vz, vr0, vz0, W):
+    """Store node n's old velocity (ur, uz) in vr0, vz0 and its new one (u1, w1; dropped nodes keep theirs), and
+    its dashpot's power and axial force in W[:, i]."""
     keep = nstate[n] < 2
     vr0[n] = ur
     vz0[n] = uz
@@ -491,13 +498,7 @@ def _free_node(n, i, fr, fz, mass, vr, vz, vr0, vz0, nstate, dtv, fix, W):
     fx = fix[n]
     u1 = 0.0 if (fx & 1) != 0 else u1
     w1 = 0.0 if (fx & 2) != 0 else w1
-    keep = nstate[n] < 2
-    vr0[n] = ur
-    vz0[n] = uz
-    vr[n] = u1 if keep else ur
-    vz[n] = w1 if keep else uz
-    W[0, i] = 0.0
-    W[1, i] = 0.0
+    _store_node(n, i, ur, uz, u1, w1, 0.0, 0.0, nstate, vr, vz, vr0, vz0, W)
 
 
 @njit(cache=True, inline="always", error_model="numpy")
