@@ -271,3 +271,125 @@ def test_power_chords_bound_the_power_from_below():
     assert np.all(lb <= exact * (1 + 1e-14) + 1e-300)
     assert np.allclose(lb[-14:], exact[-14:], rtol=1e-13)
     assert np.all(lb[x >= 2.0 ** -8] >= 0.9 * exact[x >= 2.0 ** -8])
+
+
+def _branching_update(s, mu, mu_max, mu_p, D, eps_p, de, rate, q):
+    """update_point written with a branch per region of the piecewise laws (Eqs 12-18), in plain Python: the
+    oracle of the compiled update, which evaluates every region and selects (see test below)."""
+    from penetration import hjc as H
+
+    q, de = [float(v) for v in q], [float(v) for v in de]
+
+    def crush(m):
+        return q[H.I_PC] + (q[H.I_PL] - q[H.I_PC]) * (m - q[H.I_MUC]) / (q[H.I_MUCRUSH] - q[H.I_MUC])
+
+    def dense(m):
+        mb = (m - q[H.I_MULOCK]) / (1.0 + q[H.I_MULOCK])
+        if mb <= 0.0:
+            return q[H.I_K1] * mb
+        return q[H.I_K1] * mb + q[H.I_K2] * mb * mb + q[H.I_K3] * mb * mb * mb
+
+    def load(m):
+        if m <= q[H.I_MUC]:
+            return q[H.I_KE] * m
+        return crush(m) if m <= q[H.I_MUCRUSH] else dense(m)
+
+    def k_unload(m):
+        F = min(max((m - q[H.I_MUC]) / (q[H.I_MUCRUSH] - q[H.I_MUC]), 0.0), 1.0)
+        return (1.0 - F) * q[H.I_KE] + F * q[H.I_K1]
+
+    G = q[H.I_G]
+    s = [float(v) for v in s]
+    tr = (de[0] + de[1] + de[2]) / 3.0
+    for i in range(3):
+        s[i] += 2.0 * G * (de[i] - tr)
+    for i in range(3, 6):
+        s[i] += 2.0 * G * de[i]
+    if mu >= mu_max:
+        mu_max = mu
+        p = load(mu)
+    elif mu_max <= q[H.I_MUC]:
+        p = q[H.I_KE] * mu
+    elif mu_max <= q[H.I_MUCRUSH]:
+        p = crush(mu_max) - k_unload(mu_max) * (mu_max - mu)
+    else:
+        p = dense(mu)
+    if mu_max <= q[H.I_MUC]:
+        mu_p_new = 0.0
+    else:
+        m = min(mu_max, q[H.I_MUCRUSH])
+        mu_p_new = m - load(m) / k_unload(m)
+    p = max(p, -q[H.I_T] * (1.0 - D))
+    seq = math.sqrt(3.0 * (0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5]))
+    dep = 0.0
+    if eps_p >= q[H.I_EROSION]:
+        sy = 0.0
+    else:
+        fc = q[H.I_FC]
+        r = rate / q[H.I_EPS0]
+        if q[H.I_RATEFLOOR] > 0.5:
+            r = max(r, 1.0)
+        factor = 1.0 + q[H.I_C] * math.log(r) if (r > 0.0 and r != 1.0) else 1.0
+        ps = p / fc
+        if ps >= 0.0:
+            sv = q[H.I_A] * (1.0 - D) + q[H.I_B] * ps ** q[H.I_N]
+        elif q[H.I_TENSION] < 0.5:
+            sv = q[H.I_A] * (1.0 + p / q[H.I_T]) * (1.0 - D)
+        else:
+            sv = q[H.I_A] * max(0.0, 1.0 - D + p / q[H.I_T])
+        sy = q[H.I_SCALE] * fc * min(max(sv, 0.0) * factor, q[H.I_SMAX])
+    if seq > sy:
+        scale = sy / seq if seq > 0.0 else 0.0
+        s = [v * scale for v in s]
+        dep = (seq - sy) / (3.0 * G)
+    dmu_p = max(mu_p_new - mu_p, 0.0)
+    if q[H.I_DAMAGE] > 0.5 and dep + dmu_p > 0.0:
+        x = (p + q[H.I_T]) / q[H.I_FC]
+        ef = q[H.I_EFMIN] if x <= 0.0 else max(q[H.I_EFMIN], q[H.I_D1] * x ** q[H.I_D2])
+        D = min(1.0, D + (dep + dmu_p) / ef)
+    p = max(p, -q[H.I_T] * (1.0 - D))
+    return s, (p, mu_max, mu_p_new, D, dep)
+
+
+@pytest.mark.parametrize("fields", [{}, {"lock": "extended", "tension": "sphinxsys"},
+                                    {"lock": "literal", "D2": 0.7, "rate_floor": False},
+                                    {"C": 0.0, "N": 1.3, "damage": False, "erosion_strain": 0.3}])
+def test_point_update_equals_a_branching_transcription_bit_for_bit(fields):
+    """The compiled update_point (every region evaluated, one selected) against _branching_update on random states
+    over the EOS regions, loading and unloading, tension and compression, flow and no flow, damage growth, rates
+    below, at and above the reference, and non-finite inputs: the same bits (NaN where the oracle gives NaN)."""
+    from penetration.hjc import update_point
+
+    mat = HJC(**fields)
+    q = mat.as_array()
+    rng = np.random.default_rng(11)
+    n = 3000
+    counts = {"flow": 0, "crush": 0, "tension": 0, "unload": 0}
+    for k in range(n):
+        mu_max = float(rng.choice([0.0, rng.uniform(0, mat.muc), rng.uniform(mat.muc, mat.mul), rng.uniform(mat.mul, 0.3)]))
+        mu = float(mu_max + rng.choice([-1.0, 1.0]) * 10 ** rng.uniform(-6, -1.5))
+        mu_p = float(rng.uniform(0, 0.05))
+        D = float(rng.choice([0.0, rng.uniform(0, 1), 1.0]))
+        eps_p = float(rng.uniform(0, 0.5))
+        rate = float(rng.choice([0.0, 1.0, 10 ** rng.uniform(-3, 5)]))
+        s = rng.normal(0, 1, 6) * 10 ** rng.uniform(5, 8.5)
+        if k % 3 == 0:
+            s[4:] = 0.0
+        de = rng.normal(0, 1, 6) * 10 ** rng.uniform(-7, -2.5)
+        if k % 101 == 0:
+            mu = math.nan
+        if k % 103 == 0:
+            s[0] = math.inf
+        if k % 107 == 0:
+            rate = math.nan
+        s_ref, ref = _branching_update(s, mu, mu_max, mu_p, D, eps_p, de, rate, q)
+        s_new = s.copy()
+        got = update_point(s_new, mu, mu_max, mu_p, D, eps_p, de, rate, q)
+        want = np.array([*s_ref, *ref])
+        have = np.array([*s_new, *got])
+        assert np.array_equal(want.view(np.int64), have.view(np.int64)) or np.array_equal(want, have, equal_nan=True), k
+        counts["flow"] += ref[4] > 0
+        counts["crush"] += ref[2] > mu_p
+        counts["tension"] += ref[0] < 0
+        counts["unload"] += mu < mu_max
+    assert min(counts.values()) > 0.05 * n, counts

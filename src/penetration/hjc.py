@@ -190,26 +190,33 @@ def _dense_root(k1, k2, k3, p):
 
 
 # ------------------------------------------------------- compiled kernels
-@njit(cache=True)
+# The point update and the functions it calls evaluate every branch of a piecewise law and select one
+# (a if c else b on values already computed): the FE level calls them for scattered elements, whose
+# regions a branch predictor cannot guess. Each select keeps the comparison of the piecewise law as
+# written in the paper's regions, so that NaN inputs take the same side as a branch would. Branches
+# remain only on the parameter switches (the same for every point).
+@njit(cache=True, inline="always")
 def dense_pressure(mu, q):
     """Fully dense curve (Eq 15); linear k1 in tension."""
     mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
-    if mb <= 0.0:
-        return q[I_K1] * mb
-    return q[I_K1] * mb + q[I_K2] * mb * mb + q[I_K3] * mb * mb * mb
+    cubic = q[I_K1] * mb + q[I_K2] * mb * mb + q[I_K3] * mb * mb * mb
+    return q[I_K1] * mb if mb <= 0.0 else cubic
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def _crush_pressure(mu, q):
+    """The crush line between (mu_c, p_c) and (mu_l, p_l), Eq 13."""
+    return q[I_PC] + (q[I_PL] - q[I_PC]) * (mu - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC])
+
+
+@njit(cache=True, inline="always")
 def loading_pressure(mu, q):
     """Virgin loading curve p(mu): Eqs 12, 13, 15."""
-    if mu <= q[I_MUC]:
-        return q[I_KE] * mu
-    if mu <= q[I_MUCRUSH]:
-        return q[I_PC] + (q[I_PL] - q[I_PC]) * (mu - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC])
-    return dense_pressure(mu, q)
+    elastic, crush, dense = q[I_KE] * mu, _crush_pressure(mu, q), dense_pressure(mu, q)
+    return elastic if mu <= q[I_MUC] else (crush if mu <= q[I_MUCRUSH] else dense)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def unloading_modulus(mu_max, q):
     """(1 - F) Ke + F k1 with F = (mu_max - muc)/(mul - muc), Eq 14."""
     F = (mu_max - q[I_MUC]) / (q[I_MUCRUSH] - q[I_MUC])
@@ -217,54 +224,52 @@ def unloading_modulus(mu_max, q):
     return (1.0 - F) * q[I_KE] + F * q[I_K1]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def eos(mu, mu_max, q):
     """Pressure, new mu_max and permanent crush strain mu_p (before the cut-off).
 
     Loading beyond mu_max follows the virgin curve; below it the path is
     elastic (region I), the Eq 14 line (region II) or the dense curve.
     """
-    if mu >= mu_max:
-        mu_max = mu
-        p = loading_pressure(mu, q)
-    elif mu_max <= q[I_MUC]:
-        p = q[I_KE] * mu
-    elif mu_max <= q[I_MUCRUSH]:
-        p = loading_pressure(mu_max, q) - unloading_modulus(mu_max, q) * (mu_max - mu)
-    else:
-        p = dense_pressure(mu, q)
+    loading = mu >= mu_max
+    elastic = q[I_KE] * mu
+    unload = _crush_pressure(mu_max, q) - unloading_modulus(mu_max, q) * (mu_max - mu)
+    dense = dense_pressure(mu, q)
+    load = elastic if mu <= q[I_MUC] else (_crush_pressure(mu, q) if mu <= q[I_MUCRUSH] else dense)
+    p = load if loading else (elastic if mu_max <= q[I_MUC] else (unload if mu_max <= q[I_MUCRUSH] else dense))
+    mu_max = mu if loading else mu_max
     return p, mu_max, permanent_strain(mu_max, q)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def permanent_strain(mu_max, q):
     """Crush (plastic volumetric) strain left after unloading from mu_max."""
-    if mu_max <= q[I_MUC]:
-        return 0.0
     m = min(mu_max, q[I_MUCRUSH])
-    return m - loading_pressure(m, q) / unloading_modulus(m, q)
+    # m > mu_c wherever the result is used: loading_pressure(m) is the crush line there
+    return 0.0 if mu_max <= q[I_MUC] else m - loading_pressure(m, q) / unloading_modulus(m, q)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cutoff(p, D, q):
     return max(p, -q[I_T] * (1.0 - D))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def strength(p, D, rate, q):
     """Yield stress sigma_y (Pa) at pressure p, damage D, equivalent strain rate (1/s)."""
     fc = q[I_FC]
     r = rate / q[I_EPS0]
     if q[I_RATEFLOOR] > 0.5:
         r = max(r, 1.0)
-    factor = 1.0 + q[I_C] * math.log(r) if (r > 0.0 and r != 1.0) else 1.0  # C = 0 switches the rate term off
+    # ln 1 = 0 exactly: r = 1 (or r <= 0, NaN) gives the factor 1, and C = 0 switches the rate term off
+    factor = 1.0 + q[I_C] * math.log(r if (r > 0.0 and r != 1.0) else 1.0)
     ps = p / fc
-    if ps >= 0.0:
-        s = q[I_A] * (1.0 - D) + q[I_B] * ps ** q[I_N]
-    elif q[I_TENSION] < 0.5:
-        s = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D)
+    comp = q[I_A] * (1.0 - D) + q[I_B] * max(ps, 0.0) ** q[I_N]
+    if q[I_TENSION] < 0.5:
+        tens = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D)
     else:
-        s = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
+        tens = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
+    s = comp if ps >= 0.0 else tens
     s = max(s, 0.0) * factor
     return q[I_SCALE] * fc * min(s, q[I_SMAX])
 
@@ -272,19 +277,17 @@ def strength(p, D, rate, q):
 @njit(cache=True, inline="always")
 def yield_stress(p, D, eps_p, rate, q):
     """strength(), or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
-    if eps_p >= q[I_EROSION]:
-        return 0.0
-    return strength(p, D, rate, q)
+    sy = strength(p, D, rate, q)
+    return 0.0 if eps_p >= q[I_EROSION] else sy
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fracture_strain(p, q):
     """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18."""
     x = (p + q[I_T]) / q[I_FC]
-    if x <= 0.0:
-        return q[I_EFMIN]
     # IEEE pow gives x ** 1.0 = x exactly: the paper's D2 = 1 needs no power
-    return max(q[I_EFMIN], q[I_D1] * (x if q[I_D2] == 1.0 else x ** q[I_D2]))
+    xd = x if q[I_D2] == 1.0 else x ** q[I_D2]
+    return q[I_EFMIN] if x <= 0.0 else max(q[I_EFMIN], q[I_D1] * xd)
 
 
 N_CHORDS = 14
@@ -379,43 +382,51 @@ def quick_update(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, rate,
     return valid, s0 * keep, s1 * keep, s2 * keep, s3 * keep, p, mm, dep, K + 4.0 * G / 3.0
 
 
-@njit(cache=True)
-def update_point(s, mu, mu_max, mu_p, D, eps_p, deps, rate, q):
-    """One HJC stress update of a material point (hypo-elastic, radial return).
+@njit(cache=True, inline="always")
+def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2, d3, d4, d5, rate, q):
+    """One HJC stress update of a material point (hypo-elastic, radial return), on scalars.
 
-    s: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
+    s0..s5: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
     components), already rotated (Jaumann) by the caller; eps_p: plastic
-    strain accumulated so far (erosion criterion); deps: total strain
-    increment (same layout, tensor shear). Returns new s (in place), p,
-    mu_max, mu_p, D, and the plastic strain increment.
+    strain accumulated so far (erosion criterion); d0..d5: total strain
+    increment (same layout, tensor shear). Returns the new s0..s5, p, mu_max,
+    mu_p, D and the plastic strain increment. Without data-dependent branches:
+    the yield surface is evaluated at every call and the return selected.
     """
     G = q[I_G]
-    tr = (deps[0] + deps[1] + deps[2]) / 3.0
-    for i in range(3):
-        s[i] += 2.0 * G * (deps[i] - tr)
-    for i in range(3, 6):
-        s[i] += 2.0 * G * deps[i]
+    tr = (d0 + d1 + d2) / 3.0
+    s0 += 2.0 * G * (d0 - tr)
+    s1 += 2.0 * G * (d1 - tr)
+    s2 += 2.0 * G * (d2 - tr)
+    s3 += 2.0 * G * d3
+    s4 += 2.0 * G * d4
+    s5 += 2.0 * G * d5
     p, mu_max, mu_p_new = eos(mu, mu_max, q)
     p = cutoff(p, D, q)
-    j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5]
-    seq = math.sqrt(3.0 * j2)
-    dep = 0.0
-    # the surface is only evaluated above a lower bound of it (same result, fewer powers and logarithms):
-    # with a rate factor >= 1 and p >= 0, sigma_y >= scale fc min(A (1 - D), Smax)
+    seq = math.sqrt(3.0 * (0.5 * (s0 * s0 + s1 * s1 + s2 * s2) + s3 * s3 + s4 * s4 + s5 * s5))
+    # below a lower bound of the surface there is no flow (with a rate factor >= 1 and p >= 0,
+    # sigma_y >= scale fc min(A (1 - D), Smax)); the surface is evaluated anyway, the bound only decides
     below = (p >= 0.0 and eps_p < q[I_EROSION] and (q[I_RATEFLOOR] > 0.5 or q[I_C] == 0.0)
              and seq <= q[I_SCALE] * q[I_FC] * min(q[I_A] * (1.0 - D), q[I_SMAX]))
-    if not below:
-        sy = yield_stress(p, D, eps_p, rate, q)
-        if seq > sy:
-            scale = sy / seq if seq > 0.0 else 0.0
-            for i in range(6):
-                s[i] *= scale
-            dep = (seq - sy) / (3.0 * G)
+    sy = yield_stress(p, D, eps_p, rate, q)
+    flow = (not below) and seq > sy
+    back = sy / (seq if seq > 0.0 else 1.0) if seq > 0.0 else 0.0
+    scale = back if flow else 1.0
+    dep = (seq - sy) / (3.0 * G) if flow else 0.0
     dmu_p = max(mu_p_new - mu_p, 0.0)
-    if q[I_DAMAGE] > 0.5 and dep + dmu_p > 0.0:
-        D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q))
+    grow = q[I_DAMAGE] > 0.5 and dep + dmu_p > 0.0
+    D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q)) if grow else D
     p = cutoff(p, D, q)
-    return p, mu_max, mu_p_new, D, dep
+    return s0 * scale, s1 * scale, s2 * scale, s3 * scale, s4 * scale, s5 * scale, p, mu_max, mu_p_new, D, dep
+
+
+@njit(cache=True)
+def update_point(s, mu, mu_max, mu_p, D, eps_p, deps, rate, q):
+    """update_voigt on an array s (updated in place); returns p, mu_max, mu_p, D and the plastic strain increment."""
+    s[0], s[1], s[2], s[3], s[4], s[5], p, mu_max, mu_p, D, dep = update_voigt(
+        s[0], s[1], s[2], s[3], s[4], s[5], mu, mu_max, mu_p, D, eps_p,
+        deps[0], deps[1], deps[2], deps[3], deps[4], deps[5], rate, q)
+    return p, mu_max, mu_p, D, dep
 
 
 def jaumann(s, w, dt):

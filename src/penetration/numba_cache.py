@@ -2,7 +2,7 @@
 
 numba invalidates a cached function when its own file changes, not when a
 jitted function it calls (and inlines) from another file changes: the FE
-kernels inline ``hjc.update_point``, the FE time loop inlines the kernels, the
+kernels inline ``hjc.update_voigt``, the FE time loop inlines the kernels, the
 cavity solver inlines ``hjc``'s EOS and strength. Before any of these modules
 is imported, ``check()`` fingerprints the sources of every module with
 compiled kernels and, when the fingerprint differs from the one recorded with

@@ -29,7 +29,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..hjc import I_HOOP, I_G, I_K1, I_K2, I_K3, I_MUCRUSH, I_MULOCK, power_chords, quick_update, unloading_modulus, update_point
+from ..hjc import I_HOOP, I_G, I_K1, I_K2, I_K3, I_MUCRUSH, I_MULOCK, power_chords, quick_update, unloading_modulus, update_voigt
 from .materials import HJC_KIND
 
 # element fields (rows of E)
@@ -338,8 +338,6 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
     nchunk = (j1 - j0 + ROWS_PER_CHUNK - 1) // ROWS_PER_CHUNK
     for ch in prange(nchunk):
         S = np.empty((N_SCRATCH, nr))
-        s6 = np.zeros(6)
-        d6 = np.zeros(6)
         for j in range(j0 + ch * ROWS_PER_CHUNK, min(j1, j0 + (ch + 1) * ROWS_PER_CHUNK)):
             _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, qh_, chords, dt, q1, q2, erosion, ev, dtmin, S)
             dt_row, ero_row, fail, code = 1e30, 0.0, -1, 0
@@ -363,13 +361,10 @@ def element_pass(nr, nz, j0, j1, r, z, vr, vz, E, alive, F, kind, q, ctl, rowdt,
                     E[SRR, e], E[SZZ, e], E[SRZ, e] = S[S_R0, i], S[S_R1, i], S[S_R3, i]
                     de0, de1, de2, de3 = drr * dt, dzz * dt, dtt * dt, drz * dt
                     if kind == HJC_KIND:
-                        s6[0], s6[1], s6[2], s6[3] = E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e]
-                        s6[4] = 0.0
-                        s6[5] = 0.0
-                        d6[0], d6[1], d6[2], d6[3] = de0, de1, de2, de3
-                        pn, mumax, mup, dmg, dep = update_point(s6, mu_ratio - 1.0, E[MUMAX, e], E[MUP, e],
-                                                                E[DMG, e], E[EPSP, e], d6, rate, q)
-                        E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e] = s6[0], s6[1], s6[2], s6[3]
+                        n0, n1, n2, n3, _, _, pn, mumax, mup, dmg, dep = update_voigt(
+                            E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], 0.0, 0.0, mu_ratio - 1.0, E[MUMAX, e],
+                            E[MUP, e], E[DMG, e], E[EPSP, e], de0, de1, de2, de3, 0.0, 0.0, rate, q)
+                        E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e] = n0, n1, n2, n3
                         E[P, e], E[MUMAX, e], E[MUP, e], E[DMG, e] = pn, mumax, mup, dmg
                     else:
                         dep = _simple_update(kind, q, E, e, de0, de1, de2, de3, mu_ratio)

@@ -2,8 +2,8 @@
 
 Every material is a frozen dataclass that gives the compiled kernels a kind
 code and a parameter array. HJC is ``penetration.hjc.HJC`` itself: its point
-update (``hjc.update_point``) is the one the kernels call, the same code as
-the HJC drivers and tests use.
+update (``hjc.update_voigt``, which ``hjc.update_point`` wraps for arrays)
+is the one the kernels call, the same code as the HJC drivers and tests use.
 
 Elastic and von Mises materials use a hypo-elastic deviatoric update (Jaumann
 rate) and the pressure p = K ln(V0/V); they serve the verification problems.
