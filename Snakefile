@@ -86,4 +86,5 @@ rule all:
         TIMING,
         expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
         expand("figures/timing/fe_mesh_study_{profile}.{ext}", profile=FE_PROFILES, ext=["png", "csv"]),
+        expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
         FE_CONVERGENCE,

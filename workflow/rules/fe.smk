@@ -155,7 +155,7 @@ rule fe_summary:
     input: **task("figures.fe_level"), shots=fe_shots("table3") + fe_shots("fig15") + fe_shots("do1"),
            do1="results/fe/{profile}/do1/double_ogive_835.json", block="results/fe/{profile}/do1_block/double_ogive_835.json",
            cal=lambda w: fe_calibration(w.profile), pressure="results/fe/{profile}/nose_pressure.json",
-    output: json=fe_out("summary.json"),
+    output: json=fe_out("summary.json"), timing="figures/timing/fe_do1_{profile}.json",
     params: profile=lambda w: w.profile,
     threads: 1
     resources: mem_mb=1000, runtime=5
