@@ -318,22 +318,37 @@ def test_node_pass_without_dashpot_arithmetic_gives_the_same_velocities():
     assert np.all(out[0][2][0, [7, g.nz]] != 0.0)  # the dashpots absorbed power where they are
 
 
-@pytest.mark.parametrize("case", ["erosion", "floor", "non_finite"])
+@pytest.mark.parametrize("case", ["erosion", "floor", "non_finite", "plastic_strain", "damage", "guarded_floor"])
 def test_elastic_elements_of_the_vectorised_update_are_still_checked(case):
-    """Elements completed by the branch-free HJC update (elastic here) still erode, hit the step floor, or report a
-    non-finite state."""
+    """Elements completed by the branch-free HJC update (elastic here) still erode (on the effective strain, the
+    plastic strain carried from earlier steps, the damage), hit the step floor (a stop without the guard, an erosion
+    with it), or report a non-finite state."""
     controls = {"erosion": Controls(erosion="effective_strain", erosion_value=1e-12),
-                "floor": Controls(guard=False, dt_floor=1.0), "non_finite": Controls()}[case]
+                "floor": Controls(guard=False, dt_floor=1.0), "non_finite": Controls(),
+                "plastic_strain": Controls(erosion="plastic_strain", erosion_value=0.3),
+                "damage": Controls(erosion="damage", erosion_value=0.9),
+                "guarded_floor": Controls(guard=True, dt_floor=1.0)}[case]
     m = Model(build(MeshSpec(0.05, 0.2, 1.0, 0.6, 1.2, 1.2)), HJC(), controls)
     m.vz[:] = -1e-3 * m.z   # a uniaxial compression far inside the elastic range
-    if case == "floor":
+    if case in ("floor", "guarded_floor"):
         m.ctl[K.C_DTMIN] = 2.0 * m.dt0
     if case == "non_finite":
         m.E[K.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
+    marked = m.nr + 5
+    if case == "plastic_strain":
+        m.E[K.EPSP, marked] = 0.5      # plastic strain from earlier steps, no flow now
+    if case == "damage":
+        m.E[K.DMG, marked] = 0.95      # damaged earlier, elastic now
     E0 = m.E.copy()
     _pass(m, 1e-7)
-    assert np.all(m.E[K.EPSP] == 0.0) and np.all(m.E[K.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
-    if case == "erosion":
+    assert np.all(m.E[K.EPSP] == E0[K.EPSP]) and np.all(m.E[K.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
+    assert np.all(m.E[K.DMG] == E0[K.DMG])
+    if case in ("plastic_strain", "damage"):
+        assert np.flatnonzero(m.alive == 2).tolist() == [marked]
+        assert m.rowero.sum() == m.E[K.IE, marked] > 0 and np.all(m.rowfail[:m.nz] == -1)
+    elif case == "guarded_floor":
+        assert np.all(m.alive == 2) and np.all(m.rowfail[:m.nz] == -1)
+    elif case == "erosion":
         assert np.all(m.alive == 2)
         assert math.isclose(m.rowero.sum(), m.E[K.IE].sum(), rel_tol=1e-12) and m.rowero.sum() > 0
         assert np.all(m.E[K.IE] > E0[K.IE])
