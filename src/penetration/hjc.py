@@ -410,8 +410,7 @@ def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2,
              and seq <= q[I_SCALE] * q[I_FC] * min(q[I_A] * (1.0 - D), q[I_SMAX]))
     sy = yield_stress(p, D, eps_p, rate, q)
     flow = (not below) and seq > sy
-    back = sy / (seq if seq > 0.0 else 1.0) if seq > 0.0 else 0.0
-    scale = back if flow else 1.0
+    scale = (sy / seq if seq > 0.0 else 0.0) if flow else 1.0
     dep = (seq - sy) / (3.0 * G) if flow else 0.0
     dmu_p = max(mu_p_new - mu_p, 0.0)
     grow = q[I_DAMAGE] > 0.5 and dep + dmu_p > 0.0
