@@ -60,7 +60,8 @@ def fe_calibration(profile):
 # the convergence of the nose contrasts over the ci, full and convergence meshes (with the full profile only)
 FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
                   "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv",
-                  "figures/fe/contrast_ensemble_depths.csv"] if "full" in FE_PROFILES else []
+                  "figures/fe/contrast_ensemble_depths.csv", "figures/accuracy_cost.csv",
+                  "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png"] if "full" in FE_PROFILES else []
 if FE_CONVERGENCE:
     config["check"]["outputs"].update(config["check"]["full_only"])
 
@@ -76,15 +77,25 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/reference.smk"
 
 
+# Everything `all` builds; the replication report reads these and is built last.
+REPORT_INPUTS = [
+    expand("figures/{f}.png", f=FIGURES),
+    expand("figures/{t}.csv", t=TABLES),
+    list(config["check"]["outputs"]),
+    "figures/diff_summary.md",
+    TIMING,
+    expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
+    expand("figures/timing/fe_mesh_study_{profile}.{ext}", profile=FE_PROFILES, ext=["png", "csv"]),
+    expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
+    expand("figures/fe/{profile}/validation_levels.png", profile=FE_PROFILES),
+    expand("figures/timing/validation_levels_{profile}.csv", profile=FE_PROFILES),
+    FE_CONVERGENCE,
+]
+
+
+include: "workflow/rules/report.smk"
+
+
 rule all:
     default_target: True
-    input:
-        expand("figures/{f}.png", f=FIGURES),
-        expand("figures/{t}.csv", t=TABLES),
-        list(config["check"]["outputs"]),
-        "figures/diff_summary.md",
-        TIMING,
-        expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
-        expand("figures/timing/fe_mesh_study_{profile}.{ext}", profile=FE_PROFILES, ext=["png", "csv"]),
-        expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
-        FE_CONVERGENCE,
+    input: "figures/report.html", REPORT_INPUTS,

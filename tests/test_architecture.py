@@ -6,9 +6,9 @@ import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
 ORDER = ["units", "geometry", "hjc_effects", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
-         "calibration", "shots", "reference", "diff", "config", "scenes", "io", "figures", "tasks", "pipeline", "cli"]
+         "calibration", "shots", "levels", "reference", "diff", "config", "scenes", "io", "figures", "tasks", "pipeline", "cli"]
 PHYSICS = ["geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
-           "calibration", "shots"]
+           "calibration", "shots", "levels"]
 
 
 def imports(module):

@@ -1,13 +1,16 @@
-"""Command line: ``python -m penetration nstar KIND key=value ... [--json]``.
+"""Command line: ``python -m penetration nstar|dop|simulate|predict ...``.
 
-Prints N*, nose length and nose volume (SI). Errors name the key and the
-allowed range on stderr and exit with status 2.
+``nstar`` prints N*, nose length and nose volume (SI). ``dop`` and
+``simulate`` run one shot (a nose of ``nstar``'s kinds and the shot's keys)
+at any level of the fidelity ladder; ``predict`` runs a CSV of shots. Errors
+name the key and the allowed range on stderr and exit with status 2.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import sys
+import time
 from pathlib import Path
 
 from .geometry import NOSES, ParameterError, make_nose
@@ -21,6 +24,50 @@ KEYS_HELP = {
     "minimum_nstar": "radius=a length=b",
     "table": "path=FILE.csv (columns x,y in metres)",
 }
+LEVEL_CHOICES = ["analytic", "trajectory", "cavity", "fe"]
+# shot keys of dop and simulate (SI): name -> (help, default)
+SHOT_KEYS = {"mass": ("projectile mass, kg (0 < m <= 1e6)", None),
+             "velocity": ("striking velocity, m/s (0 < v <= 1e4)", None),
+             "fc": ("concrete compressive strength, Pa (0.5e6 < fc <= 2e9; 20e6-200e6 at the cavity and fe levels)", None),
+             "density": ("concrete density, kg/m^3 (100 < rho <= 2e4)", "2440"),
+             "length": ("projectile length, m (nose and shank; needed by the fe level)", None)}
+LEVELS_EPILOG = (
+    "levels: analytic (Eq 9 and its closed-form time and peak deceleration; ns-us per shot), trajectory (rigid-body "
+    "ODE, crater + static + inertial; ms), cavity (HJC sigma_n(v) table of the shot's concrete driving the "
+    "trajectory; seconds per new concrete, tables cached per concrete and caliber), fe (2-D axisymmetric finite "
+    "elements; minutes). S(fc) of the analytic and trajectory levels: --strength-law. The cavity and fe levels scale "
+    "Table 1's HJC set to fc (levels.HJC_SCALING_RULE) and carry over the DO1 calibrations found under --root "
+    "(results/calibration/cavity_do1.json, results/fe/PROFILE/calibration_h*.json) unless --strength-scale or "
+    "--failure-strain is given.")
+
+
+def _level_options(p, model_help):
+    p.add_argument("--model", choices=LEVEL_CHOICES, default="analytic", help=model_help)
+    p.add_argument("--strength-law", choices=["li_chen", "forrestal"], default="li_chen",
+                   help="published S(fc) relation of the analytic and trajectory levels (default li_chen: S = 72 fc^-0.5, "
+                        "fc in MPa)")
+    p.add_argument("--root", default=".", help="pipeline directory holding workflow/config.yaml and the DO1 "
+                   "calibrations under results/ (default: the current directory)")
+    p.add_argument("--profile", choices=["full", "ci"], default="full",
+                   help="FE mesh profile whose DO1 calibration the fe level carries over (default full: 8 elements "
+                        "across the shank radius)")
+    p.add_argument("--strength-scale", type=float, default=None,
+                   help="cavity level: factor on the HJC strength surface instead of the DO1 calibration (> 0)")
+    p.add_argument("--failure-strain", type=float, default=None,
+                   help="fe level: erosion strain instead of the DO1 calibration (> 0)")
+
+
+def _shot_parser(sub, name, help_text):
+    p = sub.add_parser(name, help=help_text, formatter_class=argparse.RawDescriptionHelpFormatter,
+                       epilog="shot keys (SI):\n" + "\n".join(f"  {k}=  {h}" + (f" [default {d}]" if d else "")
+                                                              for k, (h, d) in SHOT_KEYS.items())
+                       + "\nnose kinds and keys (as nstar):\n" + "\n".join(f"  {k}: {v}" for k, v in KEYS_HELP.items())
+                       + "\n\n" + LEVELS_EPILOG)
+    p.add_argument("kind", help=f"nose kind, one of {sorted(NOSES)}")
+    p.add_argument("params", nargs="*", metavar="key=value", help="nose and shot keys in SI units")
+    _level_options(p, "level of the fidelity ladder (default analytic)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    return p
 
 
 def _parser():
@@ -32,12 +79,16 @@ def _parser():
     n.add_argument("kind", help=f"one of {sorted(NOSES)}")
     n.add_argument("params", nargs="*", metavar="key=value", help="nose parameters in SI units")
     n.add_argument("--json", action="store_true", help="print one JSON object")
-    pr = sub.add_parser("predict", help="closed-form DOP (Eq 9) for a CSV of shots")
-    pr.add_argument("shots", help="CSV in the schema of experiments-dev.csv (other columns are passed through)")
-    pr.add_argument("--model", choices=["analytic"], default="analytic", help="model level (analytic: Eq 9)")
-    pr.add_argument("--strength-law", choices=["li_chen", "forrestal"], default="li_chen",
-                    help="published S(fc) relation (default li_chen: S = 72 fc^-0.5)")
-    pr.add_argument("--out", required=True, help="output CSV: the input rows that could be predicted, plus dop_pred_m")
+    _shot_parser(sub, "dop", "depth of penetration, time to rest, peak deceleration and cost of one shot")
+    s = _shot_parser(sub, "simulate", "one shot as dop, and its history (time, depth, velocity, deceleration) as CSV")
+    s.add_argument("--out", required=True, help="history CSV to write (levels trajectory, cavity, fe)")
+    pr = sub.add_parser("predict", help="depth of penetration of a CSV of shots at any level",
+                        epilog=LEVELS_EPILOG)
+    pr.add_argument("shots", help="CSV in the schema of experiments-dev.csv (other columns are passed through; "
+                                  "length_m is needed by the fe level)")
+    _level_options(pr, "level of the fidelity ladder (default analytic: Eq 9, adds dop_pred_m; the other levels add "
+                       "model, dop_pred_m, time_to_rest_pred_s, peak_deceleration_pred_m_s2, wall_time_s)")
+    pr.add_argument("--out", required=True, help="output CSV: the input rows that could be predicted, plus the predictions")
     return p
 
 
@@ -56,7 +107,7 @@ def _keywords(pairs):
 def _predict(args) -> int:
     """Predict the shots of a CSV file; nothing is written unless at least one row could be predicted."""
     from .io import read_rows, write_rows
-    from .shots import output_fields, predict_rows
+    from .levels import output_fields, predict_rows
     src, out = Path(args.shots), Path(args.out)
     if out.is_dir():
         return _fail(f"--out {args.out} is a directory; allowed: the path of a CSV file to write")
@@ -66,18 +117,108 @@ def _predict(args) -> int:
         fields, rows = read_rows(src)
     except (OSError, ValueError) as err:
         return _fail(f"cannot read shots file {args.shots}: {getattr(err, 'strerror', None) or err}")
-    good, problems = predict_rows(rows, args.strength_law)
+    ctx = None
+    if args.model != "analytic":
+        try:
+            ctx = _context(args)
+        except (ParameterError, OSError) as err:
+            return _fail(str(err))
+    good, problems = predict_rows(rows, args.strength_law, args.model, ctx, _progress(f"{args.model}: shot"))
     for p in problems:
         print(f"skipped {p}", file=sys.stderr)
     if not good:
         return _fail(f"no shot in {args.shots} could be predicted ({len(rows)} rows); nothing written")
     try:
-        write_rows(out, output_fields(fields), good)
+        write_rows(out, output_fields(fields, args.model), good)
     except OSError as err:
         name = str(err.filename or "")
         where = "" if name in ("", str(out)) else f" (directory {out.parent})" if name.endswith(".tmp") else f" ({name})"
         return _fail(f"cannot write --out {args.out}: {err.strerror or err}{where}")
     print(f"predicted {len(good)} shots, skipped {len(problems)}; wrote {args.out}", file=sys.stderr)
+    return 0
+
+
+def _progress(what):
+    """A progress line on a terminal (stderr), nothing otherwise."""
+    if not sys.stderr.isatty():
+        return None
+    t0 = time.perf_counter()
+
+    def show(i, n):
+        bar = "#" * int(30 * i / max(n, 1))
+        print(f"\r{what} {i}/{n} [{bar:<30}] {time.perf_counter() - t0:6.1f} s", end="" if i < n else "\n",
+              file=sys.stderr, flush=True)
+    return show
+
+
+def _context(args):
+    """The levels' context from --root, with the command line's calibration overrides (checked)."""
+    from .tasks.levels import context_from_pipeline
+    root = Path(args.root)
+    if not (root / "workflow/config.yaml").is_file():
+        raise ParameterError("argument", "--root", args.root, "a pipeline directory with workflow/config.yaml")
+    ctx = context_from_pipeline(root, args.profile, args.strength_law)
+    for name, attr in (("--strength-scale", "strength_scale"), ("--failure-strain", "failure_strain")):
+        value = getattr(args, attr)
+        if value is not None:
+            if not (value > 0 and value < float("inf")):
+                raise ParameterError("argument", name, value, f"{name} > 0")
+            setattr(ctx, attr, value)
+            setattr(ctx, f"{attr}_source", f"given on the command line ({name})")
+    return ctx
+
+
+def _shot(args):
+    """The UserShot of dop/simulate's keys (nose keys go to the nose)."""
+    from .levels import UserShot
+    kw = _keywords(args.params)
+    values = {}
+    for key, (_, default) in SHOT_KEYS.items():
+        raw = kw.pop(key, default)
+        if raw is None:
+            if key == "length":
+                continue
+            raise ParameterError("shot", key, None, f"required: {SHOT_KEYS[key][0]}")
+        try:
+            values[key] = float(raw)
+        except ValueError:
+            raise ParameterError("shot", key, raw, SHOT_KEYS[key][0]) from None
+    return UserShot(make_nose(args.kind, **kw), **values)
+
+
+def _one_shot(args) -> int:
+    from .levels import run
+    if args.command == "simulate" and args.model == "analytic":
+        return _fail("--model analytic has no history; allowed for simulate: trajectory, cavity, fe")
+    try:
+        shot = _shot(args)
+        ctx = _context(args) if args.model != "analytic" else None
+        if ctx is None:
+            from .levels import Context
+            ctx = Context(strength_law=args.strength_law)
+        out = Path(args.out) if args.command == "simulate" else None
+        if out is not None and out.is_dir():
+            raise ParameterError("argument", "--out", args.out, "the path of a CSV file to write")
+        res = run(shot, args.model, ctx)
+    except (ParameterError, OSError, RuntimeError) as err:
+        return _fail(str(err))
+    rec = res.record()
+    if out is not None:
+        import pandas as pd
+        from .io import write_csv
+        cols = {"t": "t_s", "depth": "depth_m", "velocity": "velocity_m_s", "deceleration": "deceleration_m_s2"}
+        try:
+            write_csv(pd.DataFrame({cols[k]: v for k, v in res.history.items()}), out)
+        except OSError as err:
+            return _fail(f"cannot write --out {args.out}: {err.strerror or err}")
+        rec["history"] = str(out)
+    if args.json:
+        print(json.dumps(rec))
+    else:
+        print(f"level              {rec['level']}\ndepth              {rec['depth_m']:.6g} m\n"
+              f"time to rest       {rec['time_to_rest_s']:.6g} s\npeak deceleration  {rec['peak_deceleration_m_s2']:.6g} m/s^2\n"
+              f"status             {rec['status']}\nwall time          {rec['wall_time_s']:.3g} s\nnotes              {rec['notes']}"
+              + (f"\nhistory            {rec['history']}" if "history" in rec else ""))
     return 0
 
 
@@ -90,6 +231,8 @@ def main(argv=None) -> int:
     args = _parser().parse_args(argv)
     if args.command == "predict":
         return _predict(args)
+    if args.command in ("dop", "simulate"):
+        return _one_shot(args)
     try:
         nose = make_nose(args.kind, **_keywords(args.params))
         result = {"nstar": nstar(nose), "length": nose.length, "volume": nose.volume()}

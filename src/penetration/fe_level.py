@@ -14,7 +14,20 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from .dop import penetration_depth
 from .fe.shot import Settings, TargetSpec, run_shot
+from .nstar import nstar
+from .resistance import Target, strength_factor
+
+
+DEPTH_ALLOWANCE = 1.6  # the stated S = 72 fc^-0.5 gives 0.64-0.7 of the depths the FE level reaches
+
+
+def expected_depth(nose, mass, velocity, fc, rho):
+    """Domain depth estimate for a semi-infinite target: DEPTH_ALLOWANCE times Eq 9 with Li and Chen's S (a run
+    that reaches the bottom is repeated on a domain twice as deep)."""
+    return DEPTH_ALLOWANCE * float(penetration_depth(mass, nose.radius, nstar(nose),
+                                                     Target(rho, fc, strength_factor(fc, "li_chen")), velocity))
 
 
 def with_failure_strain(settings: Settings, fs):

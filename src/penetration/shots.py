@@ -81,6 +81,16 @@ def output_fields(fields):
     return [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"]
 
 
+def row_problem(i, row):
+    """'row i: reason' for a row with more or fewer fields than the header (csv.DictReader puts fields beyond the
+    header under the key None and leaves missing ones None), else None."""
+    if None in row:
+        return f"row {i}: {len(row) - 1 + len(row[None])} fields, the header has {len(row) - 1}"
+    if None in row.values():
+        return f"row {i}: {sum(v is not None for v in row.values())} fields, the header has {len(row)}"
+    return None
+
+
 def predict_rows(rows, law="li_chen"):
     """Predicted depths for shot rows: (rows with dop_pred_m added, 'row N: reason' per skipped row).
 
@@ -90,12 +100,8 @@ def predict_rows(rows, law="li_chen"):
     """
     good, problems = [], []
     for i, row in enumerate(rows, start=2):
-        if None in row:
-            problems.append(f"row {i}: {len(row) - 1 + len(row[None])} fields, the header has {len(row) - 1}")
-            continue
-        if None in row.values():
-            given = sum(v is not None for v in row.values())
-            problems.append(f"row {i}: {given} fields, the header has {len(row)}")
+        if (problem := row_problem(i, row)) is not None:
+            problems.append(problem)
             continue
         try:
             dop = predicted_depth(row, law)

@@ -60,7 +60,7 @@ rule fe_table3:
 rule fe_fig12:
     input: **task("figures.fe_level"), reference=config["reference"], shot="results/fe/{profile}/do1/double_ogive_835.json",
            histories="results/fe/{profile}/do1/double_ogive_835_histories.csv",
-    output: png=fe_out("fig12.png"), csv=fe_out("fig12.csv"),
+    output: png=report(fe_out("fig12.png"), caption="../report/captions/fe_fig12.rst", category="Finite-element level"), csv=fe_out("fig12.csv"),
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -82,7 +82,7 @@ rule fe_meshes:
 
 rule fe_fig13:
     input: **task("figures.fe_level"), meshes="results/fe/{profile}/meshes.csv",
-    output: png=fe_out("fig13.png"), csv=fe_out("fig13.csv"),
+    output: png=report(fe_out("fig13.png"), caption="../report/captions/fe_fig13.rst", category="Finite-element level"), csv=fe_out("fig13.csv"),
     params: dpi=config["figures"]["dpi"], profile=lambda w: w.profile,
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -93,7 +93,7 @@ rule fe_fig13:
 
 rule fe_fig14:
     input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("table3"), histories=fe_histories("table3"),
-    output: png=fe_out("fig14.png"), csv=fe_out("fig14.csv"), cutoff_png=fe_out("fig14_cutoff.png"),
+    output: png=report(fe_out("fig14.png"), caption="../report/captions/fe_fig14.rst", category="Finite-element level"), csv=fe_out("fig14.csv"), cutoff_png=report(fe_out("fig14_cutoff.png"), caption="../report/captions/fe_fig14_cutoff.rst", category="Finite-element level"),
             cutoff_csv=fe_out("fig14_cutoff.csv"),
     params: dpi=config["figures"]["dpi"],
     threads: 1
@@ -105,7 +105,7 @@ rule fe_fig14:
 
 rule fe_fig15:
     input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("fig15"),
-    output: png=fe_out("fig15.png"), csv=fe_out("fig15.csv"),
+    output: png=report(fe_out("fig15.png"), caption="../report/captions/fe_fig15.rst", category="Finite-element level"), csv=fe_out("fig15.csv"),
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -117,7 +117,7 @@ rule fe_fig15:
 rule fe_do1_fields:
     input: **task("figures.fe_level"), shot="results/fe/{profile}/do1/double_ogive_835.json",
            fields="results/fe/{profile}/do1/double_ogive_835_fields.csv",
-    output: png=fe_out("do1_fields.png"), csv=fe_out("do1_profile.csv"),
+    output: png=report(fe_out("do1_fields.png"), caption="../report/captions/fe_do1_fields.rst", category="Finite-element level"), csv=fe_out("do1_profile.csv"),
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -129,7 +129,7 @@ rule fe_do1_fields:
 rule fe_mesh_study:
     input: **task("figures.fe_level"),
            calibrations=lambda w: [f"results/fe/{w.profile}/calibration_h{h}.json" for h in config["fe"]["profiles"][w.profile]["mesh_study"]],
-    output: png="figures/timing/fe_mesh_study_{profile}.png", csv="figures/timing/fe_mesh_study_{profile}.csv",
+    output: png=report("figures/timing/fe_mesh_study_{profile}.png", caption="../report/captions/fe_mesh_study.rst", category="Timing (machine-dependent)"), csv="figures/timing/fe_mesh_study_{profile}.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -187,7 +187,7 @@ FE_OUTPUTS += ["diff.csv", "diff_summary.md"]
 
 rule fe_contrasts:
     input: **task("figures.fe_level"), shots=fe_shots("fig15"), reference=config["reference"],
-    output: png=fe_out("contrasts.png"), csv=fe_out("contrasts.csv"),
+    output: png=report(fe_out("contrasts.png"), caption="../report/captions/fe_contrasts.rst", category="Finite-element level"), csv=fe_out("contrasts.csv"),
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -205,7 +205,7 @@ rule fe_contrast_convergence:
            tables=expand("figures/fe/{profile}/table3.csv", profile=["ci", "full", *CONVERGENCE_PROFILES]),
            calibrations=[fe_calibration(p) for p in ("ci", "full", *CONVERGENCE_PROFILES)],
            ensemble="figures/fe/contrast_ensemble.csv",
-    output: png="figures/fe/contrast_convergence.png", csv="figures/fe/contrast_convergence.csv",
+    output: png=report("figures/fe/contrast_convergence.png", caption="../report/captions/contrast_convergence.rst", category="Finite-element level"), csv="figures/fe/contrast_convergence.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -237,7 +237,7 @@ rule fe_ensemble_shot:
 rule fe_contrast_ensemble:
     input: **task("figures.fe_level"), ratios="figures/fe/full/table3_ratios.csv", table="figures/fe/full/table3.csv",
            shots=[path.format(profile="full") for path in fe_shots("table3")], members=fe_ensemble_members("full"),
-    output: png="figures/fe/contrast_ensemble.png", csv="figures/fe/contrast_ensemble.csv",
+    output: png=report("figures/fe/contrast_ensemble.png", caption="../report/captions/contrast_ensemble.rst", category="Finite-element level"), csv="figures/fe/contrast_ensemble.csv",
             depths="figures/fe/contrast_ensemble_depths.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"],
     threads: 1

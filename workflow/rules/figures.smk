@@ -4,7 +4,7 @@
 
 rule fig01:
     input: **task("figures.fig01"), shares="results/resistance/shares.csv",
-    output: png="figures/fig01.png", csv="figures/fig01.csv",
+    output: png=report("figures/fig01.png", caption="../report/captions/fig01.rst", category="Paper figures"), csv="figures/fig01.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -15,7 +15,7 @@ rule fig01:
 
 rule fig03:
     input: **task("figures.fig03"), curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv", reference=config["reference"],
-    output: png="figures/fig03.png", csv="figures/fig03.csv",
+    output: png=report("figures/fig03.png", caption="../report/captions/fig03.rst", category="Paper figures"), csv="figures/fig03.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -26,7 +26,7 @@ rule fig03:
 
 rule fig04:
     input: **task("figures.fig04"), curves="results/nstar/curves.csv", fig4="results/geometry/double_ogive_fig4.json",
-    output: png="figures/fig04.png", csv="figures/fig04.csv",
+    output: png=report("figures/fig04.png", caption="../report/captions/fig04.rst", category="Paper figures"), csv="figures/fig04.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -37,7 +37,7 @@ rule fig04:
 
 rule fig05:
     input: **task("figures.fig05"), curves="results/nstar/curves.csv",
-    output: png="figures/fig05.png", csv="figures/fig05.csv",
+    output: png=report("figures/fig05.png", caption="../report/captions/fig05.rst", category="Paper figures"), csv="figures/fig05.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -48,7 +48,7 @@ rule fig05:
 
 rule fig06:
     input: **task("figures.fig06"), do1="results/geometry/double_ogive_table4.json",
-    output: png="figures/fig06.png", csv="figures/fig06.csv",
+    output: png=report("figures/fig06.png", caption="../report/captions/fig06.rst", category="Paper figures"), csv="figures/fig06.csv",
     params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -59,7 +59,7 @@ rule fig06:
 
 rule fig07:
     input: **task("figures.fig07"), noses="results/nstar/noses.csv",
-    output: png="figures/fig07.png", csv="figures/fig07.csv",
+    output: png=report("figures/fig07.png", caption="../report/captions/fig07.rst", category="Paper figures"), csv="figures/fig07.csv",
     params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -70,7 +70,7 @@ rule fig07:
 
 rule fig08:
     input: **task("figures.fig08"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", diameter="results/geometry/diameter_450kg.json",
-    output: png="figures/fig08.png", csv="figures/fig08.csv",
+    output: png=report("figures/fig08.png", caption="../report/captions/fig08.rst", category="Paper figures"), csv="figures/fig08.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -81,7 +81,7 @@ rule fig08:
 
 rule fig09:
     input: **task("figures.fig09"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", diameter="results/geometry/diameter_450kg.json", reference=config["reference"],
-    output: png="figures/fig09.png", csv="figures/fig09.csv",
+    output: png=report("figures/fig09.png", caption="../report/captions/fig09.rst", category="Paper figures"), csv="figures/fig09.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -92,7 +92,7 @@ rule fig09:
 
 rule fig10:
     input: **task("figures.fig10"), paths="results/hjc/eos_paths.csv", reference=config["reference"],
-    output: png="figures/fig10.png", csv="figures/fig10.csv",
+    output: png=report("figures/fig10.png", caption="../report/captions/fig10.rst", category="Paper figures"), csv="figures/fig10.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -103,7 +103,7 @@ rule fig10:
 
 rule fig12:
     input: **task("figures.fig12"), histories="results/scenes/cavity/do1_histories.csv", reference=config["reference"],
-    output: png="figures/fig12.png", csv="figures/fig12.csv",
+    output: png=report("figures/fig12.png", caption="../report/captions/fig12.rst", category="Paper figures"), csv="figures/fig12.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -114,7 +114,7 @@ rule fig12:
 
 rule fig14:
     input: **task("figures.fig14"), histories="results/scenes/cavity/table3_histories.csv", reference=config["reference"],
-    output: png="figures/fig14.png", csv="figures/fig14.csv",
+    output: png=report("figures/fig14.png", caption="../report/captions/fig14.rst", category="Paper figures"), csv="figures/fig14.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -125,7 +125,7 @@ rule fig14:
 
 rule fig15:
     input: **task("figures.fig15"), dop="results/scenes/fig15.csv", cavity="results/scenes/cavity/fig15.csv", reference=config["reference"],
-    output: png="figures/fig15.png", csv="figures/fig15.csv",
+    output: png=report("figures/fig15.png", caption="../report/captions/fig15.rst", category="Paper figures"), csv="figures/fig15.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -136,7 +136,7 @@ rule fig15:
 
 rule fig16:
     input: **task("figures.fig16"), curves="results/nstar/curves.csv", noses="results/nstar/noses.csv", reference=config["reference"],
-    output: png="figures/fig16.png", csv="figures/fig16.csv",
+    output: png=report("figures/fig16.png", caption="../report/captions/fig16.rst", category="Paper figures"), csv="figures/fig16.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -187,7 +187,7 @@ rule table4:
 
 rule validation:
     input: **task("figures.validation"), predictions="results/validation/predictions.csv",
-    output: png="figures/validation.png", csv="figures/validation.csv",
+    output: png=report("figures/validation.png", caption="../report/captions/validation.rst", category="Validation"), csv="figures/validation.csv",
     params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -199,7 +199,7 @@ rule validation:
 rule cavity_sigma_n:
     input: **task("figures.cavity_sigma_n"), sigma="results/cavity/sigma_n.csv", cal_do1="results/calibration/do1.json",
            shots="results/scenes/cavity/table3.csv",
-    output: png="figures/cavity_sigma_n.png", csv="figures/cavity_sigma_n.csv", static="figures/static_resistance.csv",
+    output: png=report("figures/cavity_sigma_n.png", caption="../report/captions/cavity_sigma_n.rst", category="Cavity level"), csv="figures/cavity_sigma_n.csv", static="figures/static_resistance.csv",
     params: dpi=config["figures"]["dpi"], rho=config["cavity_plot"]["rho"], fc=config["cavity_plot"]["fc"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -210,7 +210,7 @@ rule cavity_sigma_n:
 
 rule cavity_table3_sensitivity:
     input: **task("figures.cavity_table3_sensitivity"), csv="results/cavity/calibration_variants.csv",
-    output: png="figures/cavity_table3_sensitivity.png", csv="figures/cavity_table3_sensitivity.csv",
+    output: png=report("figures/cavity_table3_sensitivity.png", caption="../report/captions/cavity_table3_sensitivity.rst", category="Cavity level"), csv="figures/cavity_table3_sensitivity.csv",
     params: dpi=config["figures"]["dpi"], goal_pct=STUDIES["cavity_calibration_variants"]["goal_pct"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -221,7 +221,7 @@ rule cavity_table3_sensitivity:
 
 rule accuracy_trajectory:
     input: **task("figures.accuracy_trajectory"), csv="results/studies/trajectory_tolerance.csv",
-    output: png="figures/timing/accuracy_trajectory.png", csv="figures/accuracy_trajectory.csv", timing="figures/timing/accuracy_trajectory.csv",
+    output: png=report("figures/timing/accuracy_trajectory.png", caption="../report/captions/accuracy_trajectory.rst", category="Timing (machine-dependent)"), csv="figures/accuracy_trajectory.csv", timing="figures/timing/accuracy_trajectory.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -232,7 +232,7 @@ rule accuracy_trajectory:
 
 rule accuracy_cavity:
     input: **task("figures.accuracy_cavity"), csv="results/studies/cavity_solver.csv",
-    output: png="figures/timing/accuracy_cavity.png", csv="figures/accuracy_cavity.csv", timing="figures/timing/accuracy_cavity.csv",
+    output: png=report("figures/timing/accuracy_cavity.png", caption="../report/captions/accuracy_cavity.rst", category="Timing (machine-dependent)"), csv="figures/accuracy_cavity.csv", timing="figures/timing/accuracy_cavity.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -243,10 +243,133 @@ rule accuracy_cavity:
 
 rule nose_contrasts:
     input: **task("figures.nose_contrasts"), csv="results/contrasts/nose_contrasts.csv", reference=config["reference"],
-    output: png="figures/nose_contrasts.png", csv="figures/nose_contrasts.csv", table="figures/nose_contrasts_table.csv",
+    output: png=report("figures/nose_contrasts.png", caption="../report/captions/nose_contrasts.rst", category="Conclusions"), csv="figures/nose_contrasts.csv", table="figures/nose_contrasts_table.csv",
     params: dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/nose_contrasts.tsv"
     log: "results/logs/nose_contrasts.log",
     script: "../scripts/run_task.py"
+
+
+# Every level on the development shots (users' shots at every level, levels.py): nothing fitted to them; the
+# cavity and fe levels carry their DO1 calibrations over, the fe level on the mesh profile's calibration.
+rule validation_level:
+    input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
+           cal_cavity="results/calibration/cavity_do1.json",
+    output: csv="results/validation/{level}.csv",
+    params: cfg=config, law=config["validation"]["strength_law"], level=lambda w: w.level,
+    wildcard_constraints: level="trajectory|cavity",
+    threads: 2
+    resources: mem_mb=2000, runtime=20
+    benchmark: "results/benchmarks/validation_level_{level}.tsv"
+    log: "results/logs/validation_level_{level}.log",
+    script: "../scripts/run_task.py"
+
+
+rule validation_fe:
+    input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
+           cal_fe=lambda w: fe_calibration(w.profile),
+    output: csv="results/validation/fe_{profile}.csv",
+    params: cfg=lambda w: {**config, "fe": fe_cfg(w.profile)}, law=config["validation"]["strength_law"],
+            profile=lambda w: w.profile,
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/validation_fe_{profile}.tsv"
+    log: "results/logs/validation_fe_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule validation_levels:
+    input: **task("figures.validation_levels"), analytic="results/validation/predictions.csv",
+           trajectory="results/validation/trajectory.csv", cavity="results/validation/cavity.csv",
+           fe="results/validation/fe_{profile}.csv",
+    output: png=report("figures/fe/{profile}/validation_levels.png", caption="../report/captions/fe_validation_levels.rst", category="Users' shots"), csv="figures/fe/{profile}/validation_levels.csv",
+            summary="figures/fe/{profile}/validation_levels_summary.csv",
+            timing="figures/timing/validation_levels_{profile}.csv",
+    params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"], profile=lambda w: w.profile,
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/validation_levels_{profile}.tsv"
+    log: "results/logs/validation_levels_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+rule hjc_scaling:
+    input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
+    output: csv="figures/hjc_scaling.csv",
+    params: cfg=config,
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/hjc_scaling.tsv"
+    log: "results/logs/hjc_scaling.log",
+    script: "../scripts/run_task.py"
+
+
+# Accuracy against cost over the ladder (full builds: the FE meshes of the convergence profiles).
+ACCURACY_PROFILES = ["ci", "full", *CONVERGENCE_PROFILES]
+
+
+rule accuracy_cost:
+    input: **task("tasks.levels"), reference=config["reference"], table3="figures/table3.csv",
+           cal_do1="results/calibration/do1.json", do1=GEOMETRY_RESULTS["do1"],
+           trajectory="figures/accuracy_trajectory.csv", trajectory_timing="figures/timing/accuracy_trajectory.csv",
+           cal_cavity="results/calibration/cavity_do1.json", cavity_study="figures/accuracy_cavity.csv",
+           cavity_study_timing="figures/timing/accuracy_cavity.csv",
+           fe_tables=expand("figures/fe/{profile}/table3.csv", profile=ACCURACY_PROFILES),
+           fe_calibrations=[fe_calibration(p) for p in ACCURACY_PROFILES],
+           fe_shots=[f"results/fe/{p}/table3/{nose}_{v}.json" for p in ACCURACY_PROFILES for nose, v in FE_SCENES["table3"]],
+    output: csv="figures/accuracy_cost.csv", timing="figures/timing/accuracy_cost.csv",
+    params: cfg=config, fe_profiles=ACCURACY_PROFILES,
+    threads: 2
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/accuracy_cost.tsv"
+    log: "results/logs/accuracy_cost.log",
+    script: "../scripts/run_task.py"
+
+
+rule accuracy_cost_figure:
+    input: **task("figures.accuracy_cost"), csv="figures/accuracy_cost.csv", timing="figures/timing/accuracy_cost.csv",
+    output: png=report("figures/timing/accuracy_cost.png", caption="../report/captions/accuracy_cost.rst", category="Timing (machine-dependent)"),
+    params: dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/accuracy_cost_figure.tsv"
+    log: "results/logs/accuracy_cost_figure.log",
+    script: "../scripts/run_task.py"
+
+
+# The sweep target: `snakemake -c2 sweep` (not part of `all`).
+SWEEP = config.get("sweep", {})
+SWEEP_RUNS = [(lv, n) for lv, sizes in SWEEP.get("sizes", {}).items() for n in sizes]
+
+
+rule sweep_level:
+    input: **task("tasks.levels"), reference=config["reference"],
+           cal_cavity="results/calibration/cavity_do1.json", cal_fe=fe_calibration(SWEEP.get("fe_profile", "ci")),
+    output: csv="results/sweep/{level}_n{n}.csv",
+    params: cfg=config, level=lambda w: w.level, n=lambda w: w.n,
+    wildcard_constraints: level="analytic|trajectory|cavity|fe", n=r"[0-9]+",
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/sweep_level_{level}_n{n}.tsv"
+    log: "results/logs/sweep_{level}_n{n}.log",
+    script: "../scripts/run_task.py"
+
+
+rule sweep_figures:
+    input: **task("figures.sweep"), csvs=[f"results/sweep/{lv}_n{n}.csv" for lv, n in SWEEP_RUNS],
+           benchmarks=[f"results/benchmarks/sweep_level_{lv}_n{n}.tsv" for lv, n in SWEEP_RUNS],
+    output: png=report("figures/sweep/depth.png", caption="../report/captions/sweep_depth.rst", category="Users' shots"), csv="figures/sweep/depth.csv", cost_png=report("figures/timing/sweep_cost.png", caption="../report/captions/sweep_cost.rst", category="Timing (machine-dependent)"),
+            cost_csv="figures/timing/sweep_cost.csv",
+    params: dpi=config["figures"]["dpi"], levels=[lv for lv, _ in SWEEP_RUNS], sizes=[n for _, n in SWEEP_RUNS],
+            law=config["validation"]["strength_law"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/sweep_figures.tsv"
+    log: "results/logs/sweep_figures.log",
+    script: "../scripts/run_task.py"
+
+
+rule sweep:
+    input: rules.sweep_figures.output,

@@ -15,15 +15,12 @@ import pandas as pd
 
 from .. import reference
 from ..cavity_level import material_switches
-from ..dop import penetration_depth
 from ..fe import kernels as K
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import BLOCK_RADIUS, Settings, TargetSpec, binned, lowpass, run_shot
 from ..fe.solver import Controls
-from ..fe_level import calibrate_failure_strain, with_failure_strain
+from ..fe_level import calibrate_failure_strain, expected_depth, with_failure_strain
 from ..io import load_json, read_inference, task, write_csv, write_json
-from ..nstar import nstar
-from ..resistance import Target, strength_factor
 from .cavity import configured_hjc, do1_shot
 from .common import scene_from_inputs
 
@@ -40,16 +37,6 @@ def fe_settings(cfg, profile, element_size=None) -> Settings:
                     depth_margin=cfg["depth_margin"], body_length=cfg["body_length"], bin_width=cfg["bin_width"],
                     cutoff=cfg["cutoff_hz"], output_interval=cfg["output_interval"], window_ahead=cfg["window_ahead"],
                     window_tail=cfg["window_tail"], controls=controls)
-
-
-DEPTH_ALLOWANCE = 1.6  # the stated S = 72 fc^-0.5 gives 0.64-0.7 of the depths the FE level reaches
-
-
-def expected_depth(nose, mass, velocity, fc, rho):
-    """Domain depth estimate for a semi-infinite target: DEPTH_ALLOWANCE times Eq 9 with Li and Chen's S (a run
-    that reaches the bottom is repeated on a domain twice as deep)."""
-    return DEPTH_ALLOWANCE * float(penetration_depth(mass, nose.radius, nstar(nose),
-                                                     Target(rho, fc, strength_factor(fc, "li_chen")), velocity))
 
 
 def _target(fe, cfg):

@@ -1,0 +1,348 @@
+"""Every rung of the fidelity ladder for a user's own shot: depth, time to rest, peak deceleration, cost.
+
+Levels (``LEVELS``):
+
+- ``analytic``: Eq 9 (Forrestal's crater F = c z up to 4a, then Eq 7's tunnel
+  force), with S from a published S(fc) law; the time to rest and the peak
+  deceleration in the closed form of the same two-phase model.
+- ``trajectory``: the rigid-body trajectory (crater, static and inertial
+  effects) integrated in time, the same target law.
+- ``cavity``: the HJC sigma_n(v) table of the shot's concrete (dynamic
+  spherical cavity expansion) integrated over the nose along the trajectory.
+- ``fe``: the 2-D axisymmetric finite-element level (HJC target with erosion,
+  rigid projectile), minutes per shot.
+
+Concrete of any strength at the cavity and fe levels (``hjc_for_strength``):
+the HJC set of Table 1 (fc = 48 MPa) scaled to the shot's fc by Holmquist,
+Johnson & Cook's (1993) own determination of the crush point (pc = fc/3, the
+pressure of the uniaxial compression test at failure; mu_c = pc/K with K the
+elastic bulk modulus), the elastic moduli scaled as E in ACI 318-19
+(Eq 19.2.2.1.b: E = 4700 sqrt(fc) MPa, Poisson's ratio kept) and the tensile
+strength as fctm in the fib Model Code 2010 (Eq 5.1-3a: 0.30 fc^(2/3)). Each
+is applied as a ratio to its value at 48 MPa, so that the Table 1 set is
+returned exactly at 48 MPa. Carried over unchanged: the normalised strength
+and damage constants (A, B, N, C, eps0, SFMAX, D1, D2, EFMIN: HJC normalises
+them by fc), the compaction of the fully dense material (pl, mu_l, K1-K3)
+and the conventions of the configuration. The density is the shot's.
+
+Calibrations carried over from the DO1 shot (5.1 m at 835 m/s, 48 MPa):
+the cavity level's strength_scale (a factor on the strength surface) and the
+fe level's failure strain, the latter on the calibration's mesh scaled with
+the projectile: the same elements across the shank radius, and the core,
+window, margins, target radius, output interval, deceleration bins and
+filter cut-off in proportion to the radius (the time scales with the length
+at equal velocity). Neither is refitted to the user's shots.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .cavity import Controls as CavityControls, Mesh as CavityMesh
+from .cavity_level import SigmaTable, cavity_trajectory, sigma_table
+from .dop import penetration_depth
+from .geometry import Flat, Ogive, ParameterError
+from .hjc import HJC
+from .nstar import nstar
+from .resistance import STRENGTH_LAWS, Target, crater_coefficient, crater_velocity_squared, strength_factor
+from .shots import ShotError, _number, row_problem, shot_nstar, shot_values
+from .shots import output_fields as shots_output_fields, predict_rows as shots_predict_rows
+from .trajectory import assemble, integrate
+from .units import MPA
+
+LEVELS = ("analytic", "trajectory", "cavity", "fe")
+TRAJECTORY_EFFECTS = ("crater", "static", "inertial")
+CAVITY_EFFECTS = ("crater", "cavity")
+# fc range of the HJC scaling rule (Pa): the design-code relations it uses are stated for normal- and
+# high-strength concrete; outside it the rule is an extrapolation the cavity and fe levels refuse
+FC_RULE_RANGE = (20e6, 200e6)
+HJC_SCALING_RULE = {
+    "name": "HJC set of Table 1 scaled with fc",
+    "scaled": {
+        "pc": "pc = fc/3 (Holmquist, Johnson & Cook 1993: the pressure of the uniaxial compression test at failure)",
+        "muc": "muc = pc/K, K scaled as E (Holmquist, Johnson & Cook 1993; ACI 318-19 Eq 19.2.2.1.b)",
+        "G": "G proportional to E = 4700 sqrt(fc) MPa at a fixed Poisson's ratio (ACI 318-19 Eq 19.2.2.1.b)",
+        "T": "T proportional to fctm = 0.30 fc^(2/3) MPa (fib Model Code 2010, Eq 5.1-3a)",
+        "fc": "the shot's compressive strength",
+        "rho0": "the shot's density",
+    },
+    "carried_over": ["A", "B", "N", "C", "eps0", "smax", "D1", "D2", "efmin", "pl", "mul", "k1", "k2", "k3",
+                     "lock", "tension", "rate_floor"],
+    "exact_at": "fc = 48 MPa (Table 1): every scaled quantity is its Table 1 value times a ratio equal to 1",
+    "range_pa": list(FC_RULE_RANGE),
+}
+# Ranges of a user's shot (SI): the same as those of the shots CSV (shots.SHOT_FIELDS)
+SHOT_RANGES = {"mass": (1e-6, 1e6), "velocity": (0.0, 1e4), "fc": (0.5e6, 2000e6), "density": (100.0, 2e4),
+               "length": (0.0, 1e3)}
+SHOT_UNITS = {"mass": "kg", "velocity": "m/s", "fc": "Pa", "density": "kg/m^3", "length": "m"}
+
+
+@dataclass(frozen=True)
+class UserShot:
+    """One shot: a nose of the registry (with its shank radius), the projectile and the concrete (SI)."""
+    nose: object
+    mass: float
+    velocity: float
+    fc: float
+    density: float = 2440.0
+    length: float | None = None   # projectile length (m); needed by the fe level only
+    label: str = ""
+
+    def __post_init__(self):
+        for name, (lo, hi) in SHOT_RANGES.items():
+            v = getattr(self, name)
+            if v is None and name == "length":
+                continue
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and lo < v <= hi):
+                raise ParameterError("shot", name, v, f"a number in ({lo:g}, {hi:g}] {SHOT_UNITS[name]}")
+        if self.length is not None and self.length < self.nose.length:
+            raise ParameterError("shot", "length", self.length,
+                                 f">= the nose length {self.nose.length:.6g} m (the projectile is nose and shank)")
+
+
+def hjc_for_strength(fc, base: HJC, density=None) -> HJC:
+    """The HJC set ``base`` (Table 1) scaled to compressive strength fc (Pa) by HJC_SCALING_RULE."""
+    lo, hi = FC_RULE_RANGE
+    if not (math.isfinite(fc) and lo <= fc <= hi):
+        raise ParameterError("shot", "fc", fc, f"{lo / 1e6:g} <= fc <= {hi / 1e6:g} MPa (in Pa) at the cavity and fe "
+                             "levels: the range of the HJC scaling rule")
+    r = fc / base.fc
+    s = math.sqrt(r)
+    return dataclasses.replace(base, fc=fc, pc=base.pc * r, muc=base.muc * s, G=base.G * s, T=base.T * r ** (2.0 / 3.0),
+                               rho0=base.rho0 if density is None else density)
+
+
+def closed_form(mass, radius, n, target: Target, vs):
+    """Depth, time to rest and peak deceleration of Forrestal's two-phase model (Eq 8 crater, Eq 7 tunnel).
+
+    Crater: m z'' = -c z, so z = (vs/w) sin(w t), w = sqrt(c/m), up to z = 4a;
+    tunnel: m v' = -pi a^2 (S fc + N* rho v^2), so t = atan(V1 sqrt(b/k))/sqrt(k b)
+    with k = pi a^2 S fc/m, b = pi a^2 N* rho/m. The force grows through the
+    crater and falls in the tunnel: its peak is at z = 4a. A shot that stops
+    in the crater (V1^2 <= 0) rests at t = pi/(2w) with the peak c z_max/m.
+    """
+    depth = float(penetration_depth(mass, radius, n, target, vs))
+    c = float(crater_coefficient(mass, radius, n, target, vs))
+    v1sq = float(crater_velocity_squared(mass, radius, n, target, vs))
+    w = math.sqrt(c / mass)
+    if v1sq <= 0:
+        return depth, 0.5 * math.pi / w, vs * w
+    t1 = math.asin(min(1.0, 4.0 * radius * w / vs)) / w
+    k = math.pi * radius**2 * target.R / mass
+    b = math.pi * radius**2 * n * target.rho / mass
+    t2 = math.atan(math.sqrt(v1sq * b / k)) / math.sqrt(k * b)
+    return depth, t1 + t2, 4.0 * radius * c / mass
+
+
+@dataclass
+class LevelResult:
+    level: str
+    depth_m: float
+    time_to_rest_s: float
+    peak_deceleration_m_s2: float
+    wall_time_s: float
+    status: str = "rest"
+    notes: str = ""
+    history: dict | None = None
+
+    def record(self) -> dict:
+        return {"level": self.level, "depth_m": self.depth_m, "time_to_rest_s": self.time_to_rest_s,
+                "peak_deceleration_m_s2": self.peak_deceleration_m_s2, "wall_time_s": self.wall_time_s,
+                "status": self.status, "notes": self.notes}
+
+
+@dataclass
+class Context:
+    """What the levels beyond the closed form need: the base HJC set, the DO1 calibrations, the solvers' settings.
+
+    ``tables`` caches sigma_n tables per (material, radius), so that shots on a few distinct concretes and
+    calibers cost a few tables; ``table_builds`` counts the tables computed.
+    """
+    base: HJC = field(default_factory=HJC)
+    strength_law: str = "li_chen"
+    strength_scale: float | None = None
+    strength_scale_source: str = ""
+    failure_strain: float | None = None
+    failure_strain_source: str = ""
+    fe_reference_radius: float = 0.07       # m: shank radius of the DO1 mesh the failure strain belongs to
+    fe_settings: object = None              # fe.shot.Settings of the calibration mesh (None: its defaults)
+    fe_target_radius: float = 1.2           # m, at the reference radius
+    cavity_velocities: tuple = (50.0, 100.0, 150.0, 200.0, 300.0, 400.0, 500.0, 600.0, 800.0, 1000.0, 1200.0, 1500.0,
+                                2000.0)
+    cavity_mesh: CavityMesh = field(default_factory=CavityMesh)
+    cavity_controls: CavityControls = field(default_factory=CavityControls)
+    trajectory_rtol: float = 1e-8
+    cavity_rtol: float = 1e-9
+    tables: dict = field(default_factory=dict)
+    table_builds: int = 0
+
+    def __post_init__(self):
+        if self.strength_law not in STRENGTH_LAWS:
+            raise ParameterError("levels", "strength_law", self.strength_law, f"one of {sorted(STRENGTH_LAWS)}")
+
+    def table(self, material: HJC, radius) -> SigmaTable:
+        key = (material, float(radius))
+        if key not in self.tables:
+            self.tables[key], _ = sigma_table(material, self.cavity_velocities, radius, self.cavity_mesh,
+                                              self.cavity_controls)
+            self.table_builds += 1
+        return self.tables[key]
+
+
+def _target(shot: UserShot, ctx: Context) -> Target:
+    return Target(shot.density, shot.fc, float(strength_factor(shot.fc, ctx.strength_law)))
+
+
+def _analytic(shot, ctx):
+    n = nstar(shot.nose)
+    depth, t, peak = closed_form(shot.mass, shot.nose.radius, n, _target(shot, ctx), shot.velocity)
+    return LevelResult("analytic", depth, t, peak, 0.0, notes=f"S from {ctx.strength_law}")
+
+
+def _from_trajectory(level, tr, notes):
+    hist = {"t": tr.t, "depth": tr.z, "velocity": tr.v, "deceleration": tr.deceleration}
+    return LevelResult(level, tr.depth, tr.duration, float(np.max(tr.deceleration)), 0.0, notes=notes, history=hist)
+
+
+def _trajectory(shot, ctx):
+    asm = assemble(TRAJECTORY_EFFECTS, shot.nose, nstar(shot.nose), shot.mass, _target(shot, ctx), shot.velocity)
+    tr = integrate(asm, shot.mass, shot.velocity, rtol=ctx.trajectory_rtol)
+    return _from_trajectory("trajectory", tr, f"effects {'+'.join(TRAJECTORY_EFFECTS)}, S from {ctx.strength_law}")
+
+
+def _need(value, name, how, owner="levels"):
+    if value is None:
+        raise ParameterError(owner, name, None, how)
+    return value
+
+
+def cavity_material(shot: UserShot, ctx: Context) -> HJC:
+    scale = _need(ctx.strength_scale, "strength_scale", "the cavity level's DO1 calibration (build "
+                  "results/calibration/cavity_do1.json, or give a strength scale: --strength-scale)")
+    return dataclasses.replace(hjc_for_strength(shot.fc, ctx.base, shot.density), strength_scale=scale)
+
+
+def _cavity(shot, ctx):
+    table = ctx.table(cavity_material(shot, ctx), shot.nose.radius)
+    tr = cavity_trajectory(shot.nose, shot.mass, shot.velocity, table, CAVITY_EFFECTS, rtol=ctx.cavity_rtol)
+    return _from_trajectory("cavity", tr, f"HJC scaled to fc = {shot.fc / 1e6:.4g} MPa, strength_scale "
+                            f"{ctx.strength_scale:.6g} ({ctx.strength_scale_source})")
+
+
+def fe_settings_for(shot: UserShot, ctx: Context):
+    """The calibration mesh and run settings scaled to the shot's radius (same elements across the radius)."""
+    from .fe.shot import Settings
+    from .fe_level import with_failure_strain
+    fs = _need(ctx.failure_strain, "failure_strain", "the fe level's DO1 calibration (build "
+               "results/fe/PROFILE/calibration_h*.json, or give a failure strain: --failure-strain)")
+    length = _need(shot.length, "length", "the projectile length in m (the fe level meshes nose and shank)", "shot")
+    base = ctx.fe_settings or Settings()
+    k = shot.nose.radius / ctx.fe_reference_radius
+    scaled = lambda x: None if x is None else x * k
+    controls = dataclasses.replace(base.controls, end_time=base.controls.end_time * max(1.0, k))
+    s = dataclasses.replace(base, element_size=base.element_size * k, depth_margin=base.depth_margin * k,
+                            body_length=length, bin_width=base.bin_width * k, cutoff=base.cutoff / k,
+                            output_interval=base.output_interval * k, window_ahead=scaled(base.window_ahead),
+                            window_tail=scaled(base.window_tail), controls=controls)
+    return with_failure_strain(s, fs), k
+
+
+def _fe(shot, ctx, log=None):
+    from .fe.shot import TargetSpec, run_shot
+    from .fe_level import expected_depth
+    settings, k = fe_settings_for(shot, ctx)
+    material = hjc_for_strength(shot.fc, ctx.base, shot.density)
+    r = run_shot(shot.nose, shot.mass, shot.velocity, material, settings,
+                 TargetSpec("semi_infinite", ctx.fe_target_radius * k),
+                 expected_depth=expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density), log=log)
+    s = r.summary()
+    notes = (f"HJC scaled to fc = {shot.fc / 1e6:.4g} MPa, failure strain {ctx.failure_strain:.6g} "
+             f"({ctx.failure_strain_source}), {shot.nose.radius / settings.element_size:.3g} elements across the radius, "
+             f"{r.elements} elements, energy error {s['energy_error_max']:.2g}")
+    hist = {"t": r.histories["t_bins"], "deceleration": r.histories["deceleration"]}
+    return LevelResult("fe", r.depth, r.time, r.peak_deceleration, 0.0, status=r.status, notes=notes, history=hist)
+
+
+RUNNERS = {"analytic": _analytic, "trajectory": _trajectory, "cavity": _cavity, "fe": _fe}
+
+
+def run(shot: UserShot, level: str, ctx: Context, log=None) -> LevelResult:
+    """Run one shot at one level; the result's wall_time_s is this call's (sigma_n tables built for it included)."""
+    if level not in RUNNERS:
+        raise ParameterError("levels", "model", level, f"one of {list(LEVELS)}")
+    t0 = time.perf_counter()
+    res = RUNNERS[level](shot, ctx, log) if level == "fe" else RUNNERS[level](shot, ctx)
+    res.wall_time_s = time.perf_counter() - t0
+    return res
+
+
+def nose_of_row(shape, crh, radius):
+    """The nose of a shots-CSV row (ogive of its CRH, hemispherical, flat) at shank radius ``radius``."""
+    if shape == "hemispherical":
+        return Ogive(0.5, radius)
+    if shape == "flat":
+        return Flat(radius)
+    return Ogive(crh, radius)
+
+
+# ------------------------------------------------------------------ shots CSV rows at any level
+def user_shot(row) -> UserShot:
+    """The UserShot of a shots-CSV row (fields checked as shots.shot_values does; length_m, when the row has it,
+    for the fe level)."""
+    v = shot_values(row)
+    shot_nstar(row)  # checks nose_shape and crh
+    crh = float(row["crh"]) if row.get("nose_shape") == "ogive" else None
+    length = None
+    if row.get("length_m") not in (None, ""):
+        length = _number(row, "length_m", "a length in m, or empty")
+    try:
+        return UserShot(nose_of_row(row["nose_shape"], crh, 0.5 * v["diameter_m"]), v["mass_kg"], v["velocity_ms"],
+                        v["fc_MPa"] * MPA, v["target_density_kgm3"], length, row.get("shot_id", ""))
+    except ValueError as err:
+        raise ShotError(str(err)) from None
+
+
+# columns a prediction adds (one the input already has is replaced)
+PREDICTED = ["model", "dop_pred_m", "time_to_rest_pred_s", "peak_deceleration_pred_m_s2", "wall_time_s"]
+
+
+def output_fields(fields, level="analytic"):
+    """Header of the predictions: the input's fields, then dop_pred_m (analytic) or every PREDICTED column."""
+    if level == "analytic":
+        return shots_output_fields(fields)
+    return [f for f in fields if f not in PREDICTED] + PREDICTED
+
+
+def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None):
+    """Predictions for shot rows at any level: (rows with the predicted columns added, 'row N: reason' per skipped
+    row), as shots.predict_rows for the analytic level (dop_pred_m only: Eq 9); the other levels add the time to
+    rest, the peak deceleration and the wall time of each shot and need ``ctx``. A run that fails (an unstable
+    FE run) skips its row with the reason. ``progress(i, n)`` is called after each row.
+    """
+    if level == "analytic":
+        return shots_predict_rows(rows, law)
+    good, problems = [], []
+    for k, row in enumerate(rows):
+        i = k + 2
+        if progress is not None and k:
+            progress(k, len(rows))
+        if (problem := row_problem(i, row)) is not None:
+            problems.append(problem)
+            continue
+        try:
+            res = run(user_shot(row), level, ctx)
+        except (ShotError, ValueError, RuntimeError) as err:  # RuntimeError: a run that failed (fe.solver.Unstable)
+            problems.append(f"row {i}: {err}")
+            continue
+        good.append({**row, "model": level, "dop_pred_m": f"{res.depth_m:.6g}",
+                     "time_to_rest_pred_s": f"{res.time_to_rest_s:.6g}",
+                     "peak_deceleration_pred_m_s2": f"{res.peak_deceleration_m_s2:.6g}",
+                     "wall_time_s": f"{res.wall_time_s:.4g}"})
+    if progress is not None and rows:
+        progress(len(rows), len(rows))
+    return good, problems
+

@@ -1,0 +1,228 @@
+"""Tasks of users' shots at every level: the levels' context as the pipeline builds it, validation per level."""
+from __future__ import annotations
+
+import math
+import os
+import platform
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import yaml
+
+from .. import reference
+from ..cavity_level import cavity_trajectory, sigma_table
+from ..dop import penetration_depth
+from ..geometry import make_nose
+from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
+from ..levels import FC_RULE_RANGE, Context, UserShot, hjc_for_strength, output_fields, predict_rows, run
+from ..nstar import nstar
+from ..resistance import Target
+from .cavity import cavity_settings, configured_hjc
+from .fe import fe_settings
+
+
+def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profile="full", strength_law=None) -> Context:
+    """The levels' context from the config mapping, the reference CSV and the DO1 calibration files (None: that
+    level is left without its calibration and refuses to run, saying how to build it)."""
+    refs = reference.load_reference(reference_path)
+    mesh, controls = cavity_settings(cfg["cavity"])
+    ctx = Context(base=configured_hjc(refs, cfg["cavity"]), strength_law=strength_law or cfg["validation"]["strength_law"],
+                  cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,
+                  cavity_rtol=cfg["cavity"]["rtol"], fe_settings=fe_settings(cfg["fe"], profile),
+                  fe_target_radius=cfg["fe"]["target_radius"])
+    if cavity_cal is not None:
+        ctx.strength_scale = load_json(cavity_cal)["strength_scale"]
+        ctx.strength_scale_source = f"calibrated on DO1, {cavity_cal}"
+    if fe_cal is not None:
+        cal = load_json(fe_cal)
+        if not math.isclose(cal["element_size"], ctx.fe_settings.element_size):
+            raise ValueError(f"{fe_cal}: calibrated at element size {cal['element_size']} m, the {profile} profile "
+                             f"meshes at {ctx.fe_settings.element_size} m")
+        ctx.failure_strain = cal["fs"]
+        ctx.fe_reference_radius = cal["element_size"] * cal["elements_across_radius"]
+        ctx.failure_strain_source = f"calibrated on DO1 at {cal['elements_across_radius']:.3g} elements across the radius, {fe_cal}"
+    return ctx
+
+
+def context_from_pipeline(root=".", profile="full", strength_law=None) -> Context:
+    """The levels' context as the pipeline builds it, from the files under ``root`` (config, reference and the DO1
+    calibrations under results/ where they exist)."""
+    root = Path(root)
+    cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
+    cav = root / "results/calibration/cavity_do1.json"
+    fe = root / f"results/fe/{profile}/calibration_h{cfg['fe']['profiles'][profile]['element_size']}.json"
+    return context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
+                              profile, strength_law)
+
+
+def _predict_level(inputs, outputs, params, level, profile="full"):
+    cal = lambda name: getattr(inputs, name) if name in inputs.keys() else None
+    ctx = context_from_files(params.cfg, inputs.reference, cal("cal_cavity"), cal("cal_fe"), profile, params.law)
+    fields, rows = read_rows(inputs.shots)
+    good, problems = predict_rows(rows, params.law, level, ctx,
+                                  progress=lambda i, n: print(f"{level}: {i}/{n} shots", flush=True))
+    for p in problems:
+        print(f"skipped {p}")
+    if problems:
+        raise ValueError(f"{len(problems)} development shots could not be run at level {level}: {problems}")
+    write_rows(outputs.csv, output_fields(fields, level), good)
+
+
+@task
+def validation_level(inputs, outputs, params):
+    """Every development shot at the trajectory or cavity level (the cavity level with its DO1 calibration)."""
+    _predict_level(inputs, outputs, params, params.level)
+
+
+@task
+def validation_fe(inputs, outputs, params):
+    """Every development shot at the fe level of a mesh profile (its DO1 failure strain, its mesh scaled to the shot)."""
+    _predict_level(inputs, outputs, params, "fe", params.profile)
+
+
+@task
+def hjc_scaling(inputs, outputs, params):
+    """The HJC set the cavity and fe levels use at each concrete strength of the development shots (and at the
+    rule's ends and Table 1's 48 MPa), with the design-code values the rule scales by beside it."""
+    refs = reference.load_reference(inputs.reference)
+    base = configured_hjc(refs, params.cfg["cavity"])
+    shots = pd.read_csv(inputs.shots)
+    fcs = sorted({*(shots.fc_MPa.to_numpy() * 1e6), *FC_RULE_RANGE, base.fc})
+    rows = []
+    for fc in fcs:
+        m = hjc_for_strength(float(fc), base)
+        K = m.pc / m.muc
+        E = 9 * K * m.G / (3 * K + m.G)
+        E_aci = 4700e6 * np.sqrt(fc / 1e6)  # ACI 318-19: E = 4700 sqrt(fc) MPa
+        T_fib = 0.30e6 * (fc / 1e6) ** (2 / 3)    # fib Model Code 2010: fctm = 0.30 fc^(2/3) MPa
+        rows.append({"fc_MPa": fc / 1e6, "table1": bool(fc == base.fc), "pc_Pa": m.pc, "muc": m.muc, "G_Pa": m.G,
+                     "K_Pa": K, "E_Pa": E, "poisson": (3 * K - 2 * m.G) / (2 * (3 * K + m.G)), "T_Pa": m.T,
+                     "E_aci318_Pa": E_aci, "E_over_aci318": E / E_aci, "T_fib2010_Pa": T_fib, "T_over_fib2010": m.T / T_fib})
+    write_csv(pd.DataFrame(rows), outputs.csv)
+
+
+def _timed(fn, repeat=3):
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+@task
+def accuracy_cost(inputs, outputs, params):
+    """Accuracy against cost over the ladder: each level's error against the DO1 shot and against the paper's
+    simulated Table 3 column, and its own convergence study, beside its wall time per shot.
+
+    Errors go to outputs.csv (machine-independent), wall times to outputs.timing: in-process timers for the
+    closed form and the cavity table (measured here), the trajectory tolerance sweep's timers, and the FE
+    shots' own run timers (their JSON records).
+    """
+    refs = reference.load_reference(inputs.reference)
+    measured = refs["table2.dop"].si
+    rows, timing = [], []
+    t3 = pd.read_csv(inputs.table3)
+    dev = lambda pred: np.abs(pred / t3.paper_sim_m.to_numpy() - 1)
+    do1 = load_json(inputs.cal_do1)
+    # closed form: the stated S (no calibration) and the S calibrated on DO1
+    nose = read_inference(inputs.do1)["nose"]
+    data = do1["data"]
+    n = nstar(nose)
+    stated = Target(data["rho"], data["fc"], do1["S_stated_li_chen"])
+    d_stated = float(penetration_depth(data["mass"], nose.radius, n, stated, data["vs"]))
+    vs = np.full(100_000, data["vs"])
+    per_shot = _timed(lambda: penetration_depth(data["mass"], nose.radius, n, stated, vs))[0] / vs.size
+    for setting, cal, depth, pred in (("S stated (Li & Chen)", False, d_stated, t3.analytic_stated_S_m),
+                                      ("S calibrated on DO1", True, measured + do1["residual_m"], t3.analytic_m)):
+        rows.append({"level": "analytic", "setting": setting, "calibrated_on_do1": cal, "do1_depth_m": depth,
+                     "do1_rel_error": depth / measured - 1, "table3_mean_abs_rel_dev": float(dev(pred).mean()),
+                     "table3_max_abs_rel_dev": float(dev(pred).max()), "self_rel_error": np.nan, "self_reference": ""})
+        timing.append({"level": "analytic", "setting": setting, "wall_time_per_shot_s": per_shot,
+                       "timer": "in-process, Eq 9 vectorised over 1e5 shots"})
+    # trajectory: the tolerance sweep (its error against the closed form of the same model)
+    tr, tr_t = pd.read_csv(inputs.trajectory), pd.read_csv(inputs.trajectory_timing)
+    tr = tr.merge(tr_t, on=["method", "rtol"])
+    for r in tr[tr.method == "DOP853"].itertuples():
+        rows.append({"level": "trajectory", "setting": f"DOP853 rtol {r.rtol:g}", "calibrated_on_do1": True,
+                     "do1_depth_m": np.nan, "do1_rel_error": np.nan, "table3_mean_abs_rel_dev": np.nan,
+                     "table3_max_abs_rel_dev": np.nan, "self_rel_error": r.rel_error, "self_reference": "Eq 9 (closed form)"})
+        timing.append({"level": "trajectory", "setting": f"DOP853 rtol {r.rtol:g}", "wall_time_per_shot_s": r.wall_time_s,
+                       "timer": "in-process (trajectory tolerance sweep)"})
+    # cavity: the calibrated level at its configured mesh, and the zones study of the cavity solver
+    cal = load_json(inputs.cal_cavity)
+    cfg = params.cfg["cavity"]
+    mesh, controls = cavity_settings(cfg)
+    material = configured_hjc(refs, cfg, strength_scale=cal["strength_scale"])
+    t_table, (table, _) = _timed(lambda: sigma_table(material, cfg["velocities"], nose.radius, mesh, controls), repeat=1)
+    t_shot, _ = _timed(lambda: cavity_trajectory(nose, data["mass"], data["vs"], table, tuple(cal["data"]["effects"]),
+                                                 rtol=cfg["rtol"]))
+    zones = pd.read_csv(inputs.cavity_study)
+    zones = zones[zones.study == "zones"].merge(pd.read_csv(inputs.cavity_study_timing), on=["study", "setting"])
+    expansions = len(cfg["velocities"]) + len(cfg["quasi_static_from"])
+    if cfg["zones"] not in set(zones.setting.astype(int)):
+        raise ValueError(f"the cavity solver study has no run at the configured {cfg['zones']} zones")
+    for z in zones.itertuples():
+        default = int(z.setting) == cfg["zones"]
+        rows.append({"level": "cavity", "setting": f"{int(z.setting)} zones", "calibrated_on_do1": True,
+                     "do1_depth_m": measured + cal["residual_m"] if default else np.nan,
+                     "do1_rel_error": cal["relative_residual"] if default else np.nan,
+                     "table3_mean_abs_rel_dev": float(dev(t3.cavity_m).mean()) if default else np.nan,
+                     "table3_max_abs_rel_dev": float(dev(t3.cavity_m).max()) if default else np.nan,
+                     "self_rel_error": z.rel_error_vs_finest, "self_reference": f"{int(zones.setting.max())} zones"})
+        ratio = z.wall_time_s / float(zones.wall_time_s[zones.setting == cfg["zones"]].iloc[0])
+        timing.append({"level": "cavity", "setting": f"{int(z.setting)} zones", "wall_time_per_shot_s": (t_table + t_shot) * ratio,
+                       "timer": (f"in-process: one sigma_n table of {expansions} expansions and one trajectory (a shot on a "
+                                 f"new concrete) at {cfg['zones']} zones" + ("" if default else ", times the solver study's "
+                                 "ratio of expansion times at this zone count"))})
+    # fe: Table 3 at every mesh profile built, each with the failure strain calibrated on DO1 at its mesh
+    tables = {p: pd.read_csv(f) for p, f in zip(params.fe_profiles, inputs.fe_tables)}
+    finest = max(params.fe_profiles, key=lambda p: tables[p].element_size_m.iloc[0] ** -1)
+    for p, cal_path in zip(params.fe_profiles, inputs.fe_calibrations):
+        t, c = tables[p], load_json(cal_path)
+        self_err = np.abs(t.fe_m.to_numpy() / tables[finest].fe_m.to_numpy() - 1).mean() if p != finest else 0.0
+        setting = f"{c['elements_across_radius']:.3g} elements across ({p})"
+        rows.append({"level": "fe", "setting": setting, "calibrated_on_do1": True, "do1_depth_m": measured + c["residual_m"],
+                     "do1_rel_error": c["relative_residual"], "table3_mean_abs_rel_dev": float(dev(t.fe_m.to_numpy()).mean()),
+                     "table3_max_abs_rel_dev": float(dev(t.fe_m.to_numpy()).max()), "self_rel_error": self_err,
+                     "self_reference": f"{load_json(inputs.fe_calibrations[params.fe_profiles.index(finest)])['elements_across_radius']:.3g} elements across ({finest}), mean over Table 3"})
+        walls = [load_json(f)["wall_time_s"] for f in inputs.fe_shots if f"/fe/{p}/" in f]
+        timing.append({"level": "fe", "setting": setting, "wall_time_per_shot_s": float(np.mean(walls)),
+                       "timer": f"the run timers of the {len(walls)} Table 3 shots (mean)"})
+    write_csv(pd.DataFrame(rows), outputs.csv)
+    machine = f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}"
+    write_csv(pd.DataFrame(timing).assign(machine=machine), outputs.timing)
+
+
+SWEEP_LENGTH_KEYS = ("length", "tip_radius")  # nose keys given in shank radii; the others (psi) are dimensionless
+
+
+def sweep_grid(sw):
+    """The sweep's shots in order: every nose at the first velocity, then every nose at the next, and so on (the
+    first n shots of the grid span the noses before the velocities)."""
+    a = sw["radius"]
+    noses = {name: make_nose(spec["kind"], radius=a, **{k: v * a if k in SWEEP_LENGTH_KEYS else v
+                                                          for k, v in spec.items() if k != "kind"})
+             for name, spec in sw["noses"].items()}
+    return [(name, nose, float(v)) for v in sw["velocities"] for name, nose in noses.items()]
+
+
+@task
+def sweep_level(inputs, outputs, params):
+    """The first n shots of the sweep's grid at one level (its cost is the rule's benchmark record)."""
+    sw = params.cfg["sweep"]
+    grid = sweep_grid(sw)
+    n = int(params.n)
+    if n > len(grid):
+        raise ValueError(f"sweep.sizes.{params.level}: {n} shots, the grid has {len(grid)}")
+    cal = lambda name: getattr(inputs, name) if name in inputs.keys() else None
+    ctx = context_from_files(params.cfg, inputs.reference, cal("cal_cavity"), cal("cal_fe"), sw["fe_profile"])
+    rows = []
+    for k, (name, nose, v) in enumerate(grid[:n]):
+        shot = UserShot(nose, sw["mass"], v, sw["fc"], sw["density"], sw["length"], name)
+        r = run(shot, params.level, ctx)
+        rows.append({"nose": name, "nstar": nstar(nose), "velocity_ms": v, **r.record()})
+        print(f"{params.level}: {k + 1}/{n} shots ({name} at {v:g} m/s: {r.depth_m:.4g} m)", flush=True)
+    write_csv(pd.DataFrame(rows), outputs.csv)

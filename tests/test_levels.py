@@ -1,0 +1,220 @@
+"""Every level for users' shots: the HJC fc scaling rule, the closed form against the integrated trajectory,
+the sigma_n cache, the fe level's scaling with the projectile, and the command line."""
+import dataclasses
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from penetration import levels as L
+from penetration.cavity import Controls as CavityControls, Mesh as CavityMesh
+from penetration.geometry import Ogive, ParameterError
+from penetration.hjc import HJC
+from penetration.tasks.levels import context_from_pipeline
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def cli(*args, cwd=ROOT):
+    return subprocess.run([sys.executable, "-m", "penetration", *args], capture_output=True, text=True, cwd=cwd,
+                          env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+
+
+# ------------------------------------------------------------------ the HJC fc scaling rule
+def table1():
+    return context_from_pipeline(ROOT).base
+
+
+def test_scaling_returns_the_table1_set_exactly_at_48_mpa():
+    base = table1()
+    assert base.fc == 48e6
+    assert L.hjc_for_strength(48e6, base) == base
+    assert L.hjc_for_strength(48e6, base, 2440.0) == base
+
+
+def youngs(m: HJC):
+    K = m.pc / m.muc
+    return 9 * K * m.G / (3 * K + m.G), (3 * K - 2 * m.G) / (2 * (3 * K + m.G))
+
+
+@pytest.mark.parametrize("fc", [25e6, 32.4e6, 101.4e6, 200e6])
+def test_scaling_follows_its_published_relations(fc):
+    base = table1()
+    m = L.hjc_for_strength(fc, base, 2300.0)
+    # Holmquist, Johnson & Cook (1993): the crush point of the uniaxial compression test, pc = fc/3, mu_c = pc/K
+    assert m.pc == pytest.approx(fc / 3, rel=1e-14)
+    # ACI 318: E = 4700 sqrt(fc) MPa, so E/E(48) = sqrt(fc/48), at the Poisson ratio of Table 1's set
+    (E, nu), (E0, nu0) = youngs(m), youngs(base)
+    assert E / E0 == pytest.approx(math.sqrt(fc / 48e6), rel=1e-13)
+    assert nu == pytest.approx(nu0, rel=1e-13)
+    # fib Model Code 2010: fctm = 0.30 fc^(2/3) MPa, as a ratio to Table 1's T
+    assert m.T / base.T == pytest.approx((fc / 48e6) ** (2 / 3), rel=1e-14)
+    assert m.fc == fc and m.rho0 == 2300.0
+    for name in L.HJC_SCALING_RULE["carried_over"]:
+        assert getattr(m, name) == getattr(base, name), name
+
+
+def test_table1_tension_and_modulus_are_near_the_codes_at_48_mpa():
+    """A check of the rule's anchor, not an input: Table 1's T and implied E beside the two codes at 48 MPa."""
+    base = table1()
+    assert base.T / (0.30 * 48 ** (2 / 3) * 1e6) == pytest.approx(1.0, abs=0.02)
+    assert youngs(base)[0] / (4700 * math.sqrt(48) * 1e6) == pytest.approx(1.0, abs=0.05)
+
+
+@pytest.mark.parametrize("fc", [10e6, 250e6, math.nan])
+def test_scaling_refuses_strengths_outside_its_range(fc):
+    with pytest.raises(ParameterError) as err:
+        L.hjc_for_strength(fc, HJC())
+    assert "fc" in str(err.value) and "allowed" in str(err.value) and "200" in str(err.value)
+
+
+# ------------------------------------------------------------------ analytic against trajectory
+@pytest.mark.parametrize("mass,radius,velocity,fc", [
+    (0.904, 0.01345, 800.0, 32.4e6),    # a Forrestal 2003 shot
+    (81.1, 0.07, 835.0, 48e6),          # the DO1 caliber
+    (5.9, 0.0381, 250.0, 62.8e6),       # slow
+    (81.1, 0.07, 120.0, 48e6),          # stops inside the crater (V1^2 < 0)
+])
+def test_closed_form_time_and_peak_equal_the_integrated_trajectory(mass, radius, velocity, fc):
+    ctx = L.Context()
+    shot = L.UserShot(Ogive(3.0, radius), mass, velocity, fc, 2440.0)
+    a, t = L.run(shot, "analytic", ctx), L.run(shot, "trajectory", ctx)
+    assert a.depth_m == pytest.approx(t.depth_m, rel=1e-7)
+    assert a.time_to_rest_s == pytest.approx(t.time_to_rest_s, rel=1e-6)
+    assert a.peak_deceleration_m_s2 == pytest.approx(t.peak_deceleration_m_s2, rel=1e-6)
+
+
+def test_shot_fields_are_checked_by_name():
+    for field, value in (("mass", 0.0), ("velocity", -1.0), ("fc", math.inf), ("density", 50.0)):
+        kw = dict(nose=Ogive(3.0, 0.07), mass=10.0, velocity=500.0, fc=40e6, density=2400.0)
+        kw[field] = value
+        with pytest.raises(ParameterError) as err:
+            L.UserShot(**kw)
+        assert f"shot.{field}" in str(err.value) and "allowed" in str(err.value)
+    with pytest.raises(ParameterError, match="shot.length"):
+        L.UserShot(Ogive(3.0, 0.07), 10.0, 500.0, 40e6, length=0.1)  # shorter than the nose (0.2417 m)
+
+
+# ------------------------------------------------------------------ cavity level: one table per concrete and caliber
+def cheap_context():
+    return L.Context(strength_scale=0.6, strength_scale_source="test", cavity_velocities=(100.0, 300.0, 600.0, 1000.0),
+                     cavity_mesh=CavityMesh(zones=40, cap=40.0), cavity_controls=CavityControls(tol=1e-4))
+
+
+def test_sigma_tables_are_built_once_per_concrete_and_caliber():
+    ctx = cheap_context()
+    nose = Ogive(3.0, 0.03)
+    d1 = L.run(L.UserShot(nose, 5.0, 600.0, 40e6), "cavity", ctx).depth_m
+    d2 = L.run(L.UserShot(nose, 7.0, 400.0, 40e6), "cavity", ctx).depth_m
+    assert ctx.table_builds == 1 and d1 != d2
+    L.run(L.UserShot(nose, 5.0, 600.0, 80e6), "cavity", ctx)
+    assert ctx.table_builds == 2
+    L.run(L.UserShot(Ogive(3.0, 0.05), 5.0, 600.0, 40e6), "cavity", ctx)
+    assert ctx.table_builds == 3
+
+
+def test_cavity_level_resists_more_in_stronger_concrete():
+    ctx = cheap_context()
+    depths = [L.run(L.UserShot(Ogive(3.0, 0.03), 5.0, 600.0, fc), "cavity", ctx).depth_m for fc in (30e6, 60e6, 120e6)]
+    assert depths[0] > depths[1] > depths[2] > 0
+
+
+# ------------------------------------------------------------------ fe level: the calibration mesh scaled with the shot
+def fe_context():
+    ctx = context_from_pipeline(ROOT, "ci")
+    ctx.failure_strain, ctx.failure_strain_source = 0.75, "test"
+    return ctx
+
+
+def test_fe_settings_keep_the_elements_across_the_radius():
+    ctx = fe_context()
+    shot = L.UserShot(Ogive(2.0, 0.01345), 0.904, 800.0, 32.4e6, 2300.0, 0.2427)
+    s, k = L.fe_settings_for(shot, ctx)
+    assert k == pytest.approx(0.01345 / 0.07)
+    assert shot.nose.radius / s.element_size == pytest.approx(0.07 / ctx.fe_settings.element_size)
+    assert s.body_length == 0.2427 and s.controls.erosion_value == 0.75
+
+
+def test_fe_level_is_scale_invariant_without_the_rate_term():
+    """Without the rate term nothing in the fe level has a length or time scale but the shot's: a projectile twice
+    as large (mass x 8, same velocity and concrete) goes exactly twice as deep, in twice the time, at half the
+    deceleration. Factors of two are exact in floating point, so the erosion's chaos does not blur the test."""
+    ctx = fe_context()
+    ctx.base = dataclasses.replace(ctx.base, rate=False)
+    runs = [L.run(L.UserShot(Ogive(3.0, 0.0625 * k), 40.0 * k**3, 700.0, 48e6, 2440.0, 0.8 * k), "fe", ctx)
+            for k in (1.0, 2.0)]
+    assert runs[0].status == runs[1].status == "rest"
+    assert runs[1].depth_m == 2 * runs[0].depth_m
+    assert runs[1].time_to_rest_s == 2 * runs[0].time_to_rest_s
+    assert runs[1].peak_deceleration_m_s2 == 0.5 * runs[0].peak_deceleration_m_s2
+
+
+def test_fe_level_needs_the_projectile_length():
+    with pytest.raises(ParameterError, match="shot.length"):
+        L.run(L.UserShot(Ogive(3.0, 0.05), 10.0, 500.0, 40e6), "fe", fe_context())
+
+
+# ------------------------------------------------------------------ command line
+SHOT = ("ogive", "psi=3", "radius=0.07", "mass=81.1", "velocity=835", "fc=48e6")
+
+
+def test_dop_json_is_the_closed_form():
+    out = cli("dop", *SHOT, "--json")
+    assert out.returncode == 0, out.stderr
+    rec = json.loads(out.stdout)
+    depth, t, peak = L.closed_form(81.1, 0.07, 23 / 216, L._target(L.UserShot(Ogive(3.0, 0.07), 81.1, 835.0, 48e6),
+                                                                    L.Context()), 835.0)
+    assert rec["level"] == "analytic"
+    assert rec["depth_m"] == pytest.approx(depth, rel=1e-9)
+    assert rec["time_to_rest_s"] == pytest.approx(t, rel=1e-9)
+    assert rec["peak_deceleration_m_s2"] == pytest.approx(peak, rel=1e-9)
+
+
+def test_simulate_writes_the_history(tmp_path):
+    out = cli("simulate", *SHOT, "--model", "trajectory", "--out", str(tmp_path / "h.csv"), "--json")
+    assert out.returncode == 0, out.stderr
+    rec = json.loads(out.stdout)
+    import pandas as pd
+    h = pd.read_csv(tmp_path / "h.csv")
+    assert list(h.columns) == ["t_s", "depth_m", "velocity_m_s", "deceleration_m_s2"]
+    assert h.depth_m.iloc[-1] == pytest.approx(rec["depth_m"], rel=1e-10)  # the CSV keeps 12 digits
+    assert h.velocity_m_s.iloc[0] == 835.0 and h.velocity_m_s.iloc[-1] == 0.0
+
+
+@pytest.mark.parametrize("args,needle", [
+    (("dop", "ogive", "psi=3", "radius=0.07", "velocity=835", "fc=48e6"), "shot.mass"),
+    (("dop", *SHOT, "density=abc"), "shot.density"),
+    (("dop", *SHOT[:-1], "fc=500e6", "--model", "cavity", "--strength-scale", "0.6"), "shot.fc"),
+    (("dop", *SHOT, "--model", "cavity", "--strength-scale", "-1"), "--strength-scale"),
+    (("dop", *SHOT, "--model", "fe", "--failure-strain", "0.7"), "shot.length"),
+    (("simulate", *SHOT, "--out", "x.csv"), "analytic has no history"),
+    (("dop", *SHOT, "colour=red"), "colour"),
+])
+def test_one_shot_errors_name_the_field(args, needle):
+    out = cli(*args)
+    assert out.returncode == 2 and needle in out.stderr and out.stdout == ""
+
+
+def test_a_missing_calibration_says_how_to_build_it(tmp_path):
+    (tmp_path / "workflow").mkdir()
+    (tmp_path / "workflow/config.yaml").write_text((ROOT / "workflow/config.yaml").read_text())
+    (tmp_path / "workflow/reference").symlink_to(ROOT / "workflow/reference")
+    out = cli("dop", *SHOT, "--model", "cavity", "--root", str(tmp_path))
+    assert out.returncode == 2 and "cavity_do1.json" in out.stderr and "--strength-scale" in out.stderr
+
+
+def test_predict_at_the_trajectory_level_adds_every_column(tmp_path):
+    out_csv = tmp_path / "out.csv"
+    out = cli("predict", str(ROOT / "workflow/data/experiments-dev.csv"), "--model", "trajectory", "--out", str(out_csv))
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+    got, shots = pd.read_csv(out_csv), pd.read_csv(ROOT / "workflow/data/experiments-dev.csv")
+    assert len(got) == len(shots)
+    assert list(got.columns[-5:]) == ["model", "dop_pred_m", "time_to_rest_pred_s", "peak_deceleration_pred_m_s2",
+                                      "wall_time_s"]
+    assert (got.model == "trajectory").all() and np.all(got.dop_pred_m > 0) and np.all(got.time_to_rest_pred_s > 0)
