@@ -217,7 +217,12 @@ show_fit("Eq 9's S calibrated on DO1", RES / "calibration/do1.json",
 show_fit("The cavity level's strength scale calibrated on DO1", RES / "calibration/cavity_do1.json",
          ["calibration", "fitted_quantity", "data", "strength_scale", "residual_m", "relative_residual"])
 show_fit("The diameter of the 450 kg projectiles (Figs 8-9)", RES / "geometry/diameter_450kg.json",
-         ["inference", "fitted_quantity", "data", "diameter", "interval", "residual", "provenance"])
+         ["rule", "model", "diameter", "interval", "half_width_relative", "nose", "decision"])
+sec22 = pd.read_csv(RES / "scenes/sec22_450kg.csv")
+md("Figs 8-9's conclusions at both ends of the inferred diameter interval: depth and peak deceleration per nose "
+   "(the paper: the double ogive deepest, with the smallest peak).")
+table(sec22.pivot_table(index=["velocity", "nose"], columns="radius_case",
+                        values=["dop", "peak_deceleration_m_s2"]).round(4).reset_index(), )
 md("### The finite-element failure strain, calibrated on DO1 per element size")
 table(pd.read_csv(FIG / f"timing/fe_mesh_study_{PROFILE}.csv").drop(columns=["calibration_wall_time_s",
                                                                            "wall_time_per_run_s"], errors="ignore"))

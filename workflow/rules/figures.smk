@@ -318,7 +318,8 @@ rule accuracy_cost:
            cavity_study_timing="figures/timing/accuracy_cavity.csv",
            fe_tables=expand("figures/fe/{profile}/table3.csv", profile=ACCURACY_PROFILES),
            fe_calibrations=[fe_calibration(p) for p in ACCURACY_PROFILES],
-           fe_shots=[f"results/fe/{p}/table3/{nose}_{v}.json" for p in ACCURACY_PROFILES for nose, v in FE_SCENES["table3"]],
+           fe_benchmarks=[f"results/benchmarks/fe_shot_{p}_table3_{nose}_{v}.tsv" for p in ACCURACY_PROFILES
+                          for nose, v in FE_SCENES["table3"]],
     output: csv="figures/accuracy_cost.csv", timing="figures/timing/accuracy_cost.csv",
     params: cfg=config, fe_profiles=ACCURACY_PROFILES,
     threads: 2

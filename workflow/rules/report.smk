@@ -5,7 +5,7 @@
 rule report:
     input: **task("tasks.report"), source="workflow/report.py", findings=config["findings"], outputs=REPORT_INPUTS,
            fits=[GEOMETRY_RESULTS["do1"], "results/calibration/do1.json", "results/calibration/cavity_do1.json",
-                 "results/geometry/diameter_450kg.json"],
+                 "results/geometry/diameter_450kg.json", "results/scenes/sec22_450kg.csv"],
     output: html="figures/report.html",
     params: profile=config["fe_profile"], timeout_s=600,
     threads: 1
