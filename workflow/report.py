@@ -211,7 +211,8 @@ def show_fit(title, path, keys):
 
 
 show_fit("The DO1 double-ogive nose, inferred from Table 4", RES / "geometry/double_ogive_table4.json",
-         ["inference", "fitted_quantity", "data", "residual", "residuals", "nose", "provenance"])
+         ["rule", "inference_inputs", "assumptions", "residual", "unique", "family_parameter", "choice", "nose",
+          "family_summary"])
 show_fit("Eq 9's S calibrated on DO1", RES / "calibration/do1.json",
          ["calibration", "fitted_quantity", "data", "S", "S_stated_li_chen", "S_ratio_to_stated", "residual_m"])
 show_fit("The cavity level's strength scale calibrated on DO1", RES / "calibration/cavity_do1.json",
