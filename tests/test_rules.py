@@ -99,8 +99,9 @@ def tree(tmp_path_factory):
     for name in ("Snakefile", "workflow", "src"):
         (shutil.copytree if (ROOT / name).is_dir() else shutil.copy)(ROOT / name, root / name)
     dry = subprocess.run(SNAKEMAKE + ["-n", "-c1", "--forceall"], capture_output=True, text=True, cwd=root, check=True)
-    outputs = {f.strip() for line in (dry.stdout + dry.stderr).splitlines() if line.strip().startswith("output:")
-               for f in line.split(":", 1)[1].split(",")}
+    # a job's benchmark record is one of its products too (accuracy_cost and sweep_figures read records)
+    outputs = {f.strip() for line in (dry.stdout + dry.stderr).splitlines()
+               if line.strip().startswith(("output:", "benchmark:")) for f in line.split(":", 1)[1].split(",")}
     now = time.time()
     for p in root.rglob("*"):
         if p.is_file():

@@ -33,6 +33,10 @@ rule fe_shot:
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
             velocity=lambda w: w.velocity,
+    # the scenes' and noses' names exactly, so that the benchmark record's name (underscores between the
+    # wildcards) names one job: accuracy_cost reads these records
+    wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)),
+                          nose="|".join(sorted({n for s in FE_SCENES.values() for n, _ in s}, key=len, reverse=True)),
     threads: 2
     resources: mem_mb=2000, runtime=30
     benchmark: "results/benchmarks/fe_shot_{profile}_{scene}_{nose}_{velocity}.tsv"
