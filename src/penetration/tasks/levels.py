@@ -57,9 +57,14 @@ def context_from_pipeline(root=".", profile="full", strength_law=None) -> Contex
                               profile, strength_law)
 
 
+def _optional(inputs, name):
+    """A rule's named input, or None where the rule does not declare it."""
+    return getattr(inputs, name) if name in inputs.keys() else None
+
+
 def _predict_level(inputs, outputs, params, level, profile="full"):
-    cal = lambda name: getattr(inputs, name) if name in inputs.keys() else None
-    ctx = context_from_files(params.cfg, inputs.reference, cal("cal_cavity"), cal("cal_fe"), profile, params.law)
+    ctx = context_from_files(params.cfg, inputs.reference, _optional(inputs, "cal_cavity"), _optional(inputs, "cal_fe"),
+                             profile, params.law)
     fields, rows = read_rows(inputs.shots)
     good, problems = predict_rows(rows, params.law, level, ctx,
                                   progress=lambda i, n: print(f"{level}: {i}/{n} shots", flush=True))
@@ -179,7 +184,8 @@ def accuracy_cost(inputs, outputs, params):
                                  "ratio of expansion times at this zone count"))})
     # fe: Table 3 at every mesh profile built, each with the failure strain calibrated on DO1 at its mesh
     tables = {p: pd.read_csv(f) for p, f in zip(params.fe_profiles, inputs.fe_tables)}
-    finest = max(params.fe_profiles, key=lambda p: tables[p].element_size_m.iloc[0] ** -1)
+    finest = min(params.fe_profiles, key=lambda p: tables[p].element_size_m.iloc[0])
+    finest_across = load_json(inputs.fe_calibrations[params.fe_profiles.index(finest)])["elements_across_radius"]
     for p, cal_path in zip(params.fe_profiles, inputs.fe_calibrations):
         t, c = tables[p], load_json(cal_path)
         self_err = np.abs(t.fe_m.to_numpy() / tables[finest].fe_m.to_numpy() - 1).mean() if p != finest else 0.0
@@ -187,7 +193,7 @@ def accuracy_cost(inputs, outputs, params):
         rows.append({"level": "fe", "setting": setting, "calibrated_on_do1": True, "do1_depth_m": measured + c["residual_m"],
                      "do1_rel_error": c["relative_residual"], "table3_mean_abs_rel_dev": float(dev(t.fe_m.to_numpy()).mean()),
                      "table3_max_abs_rel_dev": float(dev(t.fe_m.to_numpy()).max()), "self_rel_error": self_err,
-                     "self_reference": f"{load_json(inputs.fe_calibrations[params.fe_profiles.index(finest)])['elements_across_radius']:.3g} elements across ({finest}), mean over Table 3"})
+                     "self_reference": f"{finest_across:.3g} elements across ({finest}), mean over Table 3"})
         walls = [float(pd.read_csv(f, sep="\t").s.iloc[0]) for f in inputs.fe_benchmarks if f"/fe_shot_{p}_" in f]
         timing.append({"level": "fe", "setting": setting, "wall_time_per_shot_s": float(np.mean(walls)),
                        "timer": f"the benchmark records of the {len(walls)} Table 3 shot jobs (mean; process start, "
@@ -218,8 +224,8 @@ def sweep_level(inputs, outputs, params):
     n = int(params.n)
     if n > len(grid):
         raise ValueError(f"sweep.sizes.{params.level}: {n} shots, the grid has {len(grid)}")
-    cal = lambda name: getattr(inputs, name) if name in inputs.keys() else None
-    ctx = context_from_files(params.cfg, inputs.reference, cal("cal_cavity"), cal("cal_fe"), sw["fe_profile"])
+    ctx = context_from_files(params.cfg, inputs.reference, _optional(inputs, "cal_cavity"), _optional(inputs, "cal_fe"),
+                             sw["fe_profile"])
     rows = []
     for k, (name, nose, v) in enumerate(grid[:n]):
         shot = UserShot(nose, sw["mass"], v, sw["fc"], sw["density"], sw["length"], name)
