@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = ["figures/fig10.png", "figures/table1.csv"]   # hjc_eos_paths -> fig10 (a chain), table1 (on its own)
-COMPARED = ["figures/fig10.csv", "figures/table1.csv"]
+TARGETS = ["figures/fig01.png", "figures/table1.csv"]   # resistance_shares -> fig01 (a chain), table1 (on its own)
+COMPARED = ["figures/fig01.csv", "figures/table1.csv"]
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +41,7 @@ def test_jobs_run_as_submitted_scripts(cluster_run):
     assert res.returncode == 0, res.stderr[-3000:]
     submitted = (work / "submitted.txt").read_text().split()
     rules = sorted(Path(s).name.split(".")[1] for s in submitted)
-    assert rules == ["fig10", "hjc_eos_paths", "table1"]
+    assert rules == ["fig01", "resistance_shares", "table1"]
 
 
 @pytest.mark.parametrize("path", COMPARED)
