@@ -7,7 +7,7 @@ perfect caching), the floor (bytes / bandwidth), and the measured time per
 element-step of one full explicit step (node pass, move, element pass; no
 contact) on a DO1-like HJC target in motion, as a ratio to the floor, each
 the best of --repeat batches of --steps steps (noise on a shared host only
-adds time). The same elastic state on a mesh 16 times as deep shows what
+adds time), and how that step divides between its three passes. The same elastic state on a mesh 16 times as deep shows what
 moving the arrays from memory rather than from the cache costs.
 Optionally (--do1) the wall time of the pipeline's DO1 shot (its mesh and
 calibrated failure strain, from results/fe/full/do1/; the depth is checked
@@ -58,6 +58,22 @@ def _timed(fn):
 def _best(step, steps, repeat):
     """Seconds per step: the best of `repeat` batches of `steps` steps (the host's noise only ever adds time)."""
     return min(_timed(lambda: [step() for _ in range(steps)]) for _ in range(repeat)) / steps
+
+
+def _best_split(passes, steps, repeat):
+    """Seconds per step of each of `passes` (callables run in order as one step) in the batch whose total was the
+    best of `repeat` batches of `steps` steps."""
+    best = None
+    for _ in range(repeat):
+        spent = [0.0] * len(passes)
+        for _ in range(steps):
+            for k, p in enumerate(passes):
+                t0 = time.perf_counter()
+                p()
+                spent[k] += time.perf_counter() - t0
+        if best is None or sum(spent) < sum(best):
+            best = spent
+    return [x / steps for x in best]
 
 
 def step_bytes(m: Model):
@@ -143,12 +159,21 @@ def main():
     dt = 0.5 * m.dt
     m.ctl[K.C_DT] = dt
 
-    def step():
+    def node():
         K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.rowdash,
                     m.zp, m.zs, m.rowbnd)
+
+    def move():
         K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt, 0, m.r.size)
+
+    def element():
         K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
                        m.rowhg, m.rowero, m.rowfail)
+
+    def step():
+        node()
+        move()
+        element()
 
     ne = m.grid.elements
     bytes_total = step_bytes(m)
@@ -169,12 +194,13 @@ def main():
             m.vz[:] = -600.0 * (m.z - m.z.mean())
             m.vr[m.on_axis] = 0.0
         step()
-        t = _best(step, args.steps, args.repeat)
-        per = times[label] = t / ne
+        split = [x / ne for x in _best_split((node, move, element), args.steps, args.repeat)]
+        per = times[label] = sum(split)
         yielded = float((m.E[K.EPSP] > 0).mean())
         live = float((m.alive == 1).mean())
         print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step = "
-              f"{per / floor:.2f} x the floor (targets: <= 30 ns and <= 2 x)")
+              f"{per / floor:.2f} x the floor (targets: <= 30 ns and <= 2 x); node pass {split[0] * 1e9:.1f}, move "
+              f"{split[1] * 1e9:.1f}, element pass {split[2] * 1e9:.1f} ns")
     # cache or memory? The arrays of the benchmark mesh (and of the DO1 window) fit in a 32 MiB L3 cache; the same
     # elastic state over the same columns 16 times as deep moves them from and to memory every step
     deep, nd, bd = _elastic_time(MeshSpec(args.size, 0.21, 40.0, 1.2, 40.0, 1.1), args.repeat)
