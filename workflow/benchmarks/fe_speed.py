@@ -7,8 +7,9 @@ perfect caching), the floor (bytes / bandwidth), and the measured time per
 element-step of one full explicit step (node pass, move, element pass; no
 contact) on a DO1-like HJC target in motion, as a ratio to the floor, each
 the best of --repeat batches of --steps steps (noise on a shared host only
-adds time), and how that step divides between its three passes. The same elastic state on a mesh 16 times as deep shows what
-moving the arrays from memory rather than from the cache costs.
+adds time), and how that step divides between its three passes. The same
+elastic state on a mesh 16 times as deep shows what moving the arrays from
+memory rather than from the cache costs.
 Optionally (--do1) the wall time of the pipeline's DO1 shot (its mesh and
 calibrated failure strain, from results/fe/full/do1/; the depth is checked
 against the pipeline's bit for bit), and the time per
@@ -55,14 +56,9 @@ def _timed(fn):
     return time.perf_counter() - t0
 
 
-def _best(step, steps, repeat):
-    """Seconds per step: the best of `repeat` batches of `steps` steps (the host's noise only ever adds time)."""
-    return min(_timed(lambda: [step() for _ in range(steps)]) for _ in range(repeat)) / steps
-
-
 def _best_split(passes, steps, repeat):
     """Seconds per step of each of `passes` (callables run in order as one step) in the batch whose total was the
-    best of `repeat` batches of `steps` steps."""
+    best of `repeat` batches of `steps` steps (the host's noise only ever adds time)."""
     best = None
     for _ in range(repeat):
         spent = [0.0] * len(passes)
@@ -74,6 +70,11 @@ def _best_split(passes, steps, repeat):
         if best is None or sum(spent) < sum(best):
             best = spent
     return [x / steps for x in best]
+
+
+def _best(step, steps, repeat):
+    """Seconds per step of `step`, the best of `repeat` batches of `steps` steps."""
+    return _best_split((step,), steps, repeat)[0]
 
 
 def step_bytes(m: Model):
