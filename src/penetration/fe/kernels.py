@@ -52,10 +52,13 @@ TWO_PI = 2.0 * math.pi
 # source order, vectorised or not; the loops vectorise all the same (no reductions inside them).
 FAST = False
 # Constant divisors as multiplications by their reciprocals (each rounded once, here): a division costs the
-# vector loops several times a multiplication, and these 12 of the element pass's 30 divisions took about
-# 8 % of its time. Deterministic like the rest (not IEEE-equal to dividing: the results differ in the last bit).
+# vector loops several times a multiplication (12 of the element pass's 30 divisions are by 6 or 3).
+# Deterministic like the rest (not IEEE-equal to dividing: the results differ in the last bit).
 SIXTH = 1.0 / 6.0
 THIRD = 1.0 / 3.0
+# Doubles per vector of the row loops as LLVM emits them here (AVX2: 4); a row whose length is not a multiple
+# of it leaves its last elements to a scalar remainder loop (fe.mesh.build sizes the rows to avoid that).
+VECTOR_WIDTH = 4
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)

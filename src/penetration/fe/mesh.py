@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry import ParameterError
+from .kernels import VECTOR_WIDTH
 
 
 @dataclass(frozen=True)
@@ -139,9 +140,9 @@ def polar(radii, n_theta):
 
 
 def build(spec: MeshSpec) -> Grid:
-    # columns in a multiple of 4, the vector width of the element kernels (4 doubles): a row then leaves no
-    # remainder to a scalar loop, which took 8 % of the element pass at 50 columns (2 of them scalar)
-    return Grid.tensor(graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading, 4),
+    # columns in a multiple of the element kernels' vector width: no element of a row falls to a scalar remainder loop
+    return Grid.tensor(graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading,
+                              VECTOR_WIDTH),
                 graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
 
 
