@@ -476,7 +476,7 @@ def fe_rear_face(inputs, outputs, params):
         out.append(row)
     t = pd.DataFrame(out)
     write_csv(t, outputs.csv)
-    fig, axes = figure(1, 6.0, 3.8)
+    fig, axes = figure(1, 8.6, 3.8)
     ax = axes[0]
     for k, kind in enumerate(("semi_infinite", "block")):
         g = m[m.target == kind]
@@ -491,12 +491,14 @@ def fe_rear_face(inputs, outputs, params):
             ax.plot(np.full(len(other), k), other.depth_m, "s", color=f"C{k}", mfc="none",
                     label=f"{kind.replace('_', '-')}: other status ({len(other)})")
         r = t[t.target == kind].iloc[0]
-        ax.errorbar([k + 0.35], [r.mean_m], yerr=[r.std_m], fmt="_", ms=12, color=f"C{k}", capsize=3)
+        ax.errorbar([k + 0.35], [r.mean_m], yerr=[r.std_m], fmt="_", ms=12, color=f"C{k}", capsize=3,
+                    label=f"{kind.replace('_', '-')}: mean and standard deviation")
     ax.axhline(rear, color="black", lw=1, ls="--", label=f"block's rear face ({rear:g} m)")
     ax.axhline(measured, color="black", lw=1.2, ls=":",
                label=f"measured DO1 depth ({measured:g} m, the calibration's target)")
     ax.set_xticks([0, 1], ["semi-infinite", f"block ({rear:g} m deep)"])
     ax.set(xlim=(-0.6, 1.9), ylabel="depth of the tip at the end (m)",
            title=f"DO1 at 835 m/s, FE level, element size {1e3 * min(sizes):.3g} mm: {len(semi)} realisations per target")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    fig.subplots_adjust(left=0.08, right=0.6)
     save(fig, outputs.png, params.dpi)
