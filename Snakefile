@@ -60,7 +60,8 @@ def fe_calibration(profile):
 # the convergence of the nose contrasts over the ci, full and convergence meshes (with the full profile only)
 FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
                   "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv",
-                  "figures/fe/contrast_ensemble_depths.csv", "figures/accuracy_cost.csv",
+                  "figures/fe/contrast_ensemble_depths.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
+                  "figures/fe/rear_face_members.csv", "figures/accuracy_cost.csv",
                   "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png"] if "full" in FE_PROFILES else []
 if FE_CONVERGENCE:
     config["check"]["outputs"].update(config["check"]["full_only"])

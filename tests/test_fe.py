@@ -231,6 +231,28 @@ def test_controls_refuse_bad_values():
         MeshSpec(0.5, 0.2, 1.0, 2.0, 3.0)
 
 
+def test_mesh_columns_in_multiples_of_the_vector_width():
+    """The radial grading is eased so that a row has a multiple of 4 elements (no scalar remainder in the
+    kernels): the core keeps its size, the graded cells still grow, by at most the spec's ratio, and the last
+    node lies on the outer radius. Left as they are: a radius the core fills, and a graded span too short for
+    the extra cells even at the core's size."""
+    from penetration.fe.mesh import graded
+    for h, core, radius, ratio in ((0.00875, 0.21, 1.8, 1.1), (0.021, 0.21, 1.8, 1.1), (0.0035, 0.21, 1.8, 1.1),
+                                   (0.00875, 0.21, 2.5, 1.05), (0.01, 0.2, 0.33, 1.5)):
+        x = graded(0.0, core, radius, h, ratio, 4)
+        d = np.diff(x)
+        n_core = int(math.ceil(core / h - 1e-9))
+        assert d.size % 4 == 0 and 0 <= d.size - (graded(0.0, core, radius, h, ratio).size - 1) <= 3, d.size
+        assert np.allclose(d[:n_core], h, rtol=1e-12)
+        growth = d[n_core:] / d[n_core - 1:-1]
+        assert np.all(growth > 1.0) and np.all(growth <= ratio * (1 + 1e-9)), (growth.min(), growth.max())
+        assert abs(x[-1] - radius) < 1e-12 * radius
+    assert np.array_equal(graded(0.0, 0.5, 0.5, 0.05, 1.1, 4), graded(0.0, 0.5, 0.5, 0.05, 1.1))  # 10 core cells
+    # 4 core cells and 5 graded ones (ratio 1.2) over 0.4 m: 8 graded cells would need more than 8 x 0.05 m
+    assert np.array_equal(graded(0.0, 0.2, 0.6, 0.05, 1.2, 4), graded(0.0, 0.2, 0.6, 0.05, 1.2))
+    assert build(MeshSpec(0.00875, 0.21, 2.5, 1.2, 2.5, 1.1)).nr % 4 == 0
+
+
 def test_taylor_bar_copper_against_published_solutions():
     """Copper bar 32.4 mm x 3.2 mm at 227 m/s on a frictionless rigid wall, J2 with yield 400 MPa and hardening
     100 MPa (E 117 GPa, nu 0.35, rho 8930), 80 us: final impact-face radius 7.11-7.22 mm (Zienkiewicz et al. 1998,

@@ -249,3 +249,40 @@ rule fe_contrast_ensemble:
     benchmark: "results/benchmarks/fe_contrast_ensemble.tsv"
     log: "results/logs/fe_contrast_ensemble.log",
     script: "../scripts/run_task.py"
+
+
+REAR_FACE_SCENES = ("do1", "do1_block")
+
+
+def fe_rear_face_members(profile):
+    """The JSONs of the rear-face ensemble's members k >= 1 (member 0: the scenes' own shots)."""
+    n = config["fe_rear_face"]["members"]
+    return [f"results/fe/{profile}/rear_face/{scene}_m{k}.json" for scene in REAR_FACE_SCENES for k in range(1, n + 1)]
+
+
+rule fe_rear_face_shot:
+    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
+           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/{scene}.yaml", schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/rear_face/{scene}_m{member}.json",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
+            nose=lambda w: FE_SCENES[w.scene][0][0], velocity=lambda w: FE_SCENES[w.scene][0][1], member=lambda w: w.member,
+            velocity_step=config["fe_ensemble"]["velocity_step"],
+    wildcard_constraints: scene="|".join(sorted(REAR_FACE_SCENES, key=len, reverse=True)), member=r"\d+",
+    threads: 2
+    resources: mem_mb=2000, runtime=10
+    benchmark: "results/benchmarks/fe_rear_face_shot_{profile}_{scene}_m{member}.tsv"
+    log: "results/logs/fe_rear_face_shot_{profile}_{scene}_m{member}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_rear_face:
+    input: **task("figures.fe_level"), shots=[p.format(profile="full") for scene in REAR_FACE_SCENES for p in fe_shots(scene)],
+           members=fe_rear_face_members("full"), cal=fe_calibration("full"),
+    output: png=report("figures/fe/rear_face.png", caption="../report/captions/fe_rear_face.rst", category="Finite-element level"),
+            csv="figures/fe/rear_face.csv", members="figures/fe/rear_face_members.csv",
+    params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_rear_face.tsv"
+    log: "results/logs/fe_rear_face.log",
+    script: "../scripts/run_task.py"

@@ -51,6 +51,14 @@ TWO_PI = 2.0 * math.pi
 # (5.18 m) from the same kernel compiled afresh (5.10 m). Without them every operation is IEEE-exact in
 # source order, vectorised or not; the loops vectorise all the same (no reductions inside them).
 FAST = False
+# Constant divisors as multiplications by their reciprocals (each rounded once, here): a division costs the
+# vector loops several times a multiplication (12 of the element pass's 30 divisions are by 6 or 3).
+# Deterministic like the rest (not IEEE-equal to dividing: the results differ in the last bit).
+SIXTH = 1.0 / 6.0
+THIRD = 1.0 / 3.0
+# Doubles per vector of the row loops as LLVM emits them here (AVX2: 4); a row whose length is not a multiple
+# of it leaves its last elements to a scalar remainder loop (fe.mesh.build sizes the rows to avoid that).
+VECTOR_WIDTH = 4
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
@@ -60,11 +68,11 @@ def _moment(r1, r2, r3, r4, z1, z2, z3, z4):
     c23 = r2 * z3 - r3 * z2
     c34 = r3 * z4 - r4 * z3
     c41 = r4 * z1 - r1 * z4
-    W = ((r1 + r2) * c12 + (r2 + r3) * c23 + (r3 + r4) * c34 + (r4 + r1) * c41) / 6.0
-    w1 = (c41 + c12 + (r4 + r1) * (-z4) + (r1 + r2) * z2) / 6.0
-    w2 = (c12 + c23 + (r1 + r2) * (-z1) + (r2 + r3) * z3) / 6.0
-    w3 = (c23 + c34 + (r2 + r3) * (-z2) + (r3 + r4) * z4) / 6.0
-    w4 = (c34 + c41 + (r3 + r4) * (-z3) + (r4 + r1) * z1) / 6.0
+    W = ((r1 + r2) * c12 + (r2 + r3) * c23 + (r3 + r4) * c34 + (r4 + r1) * c41) * SIXTH
+    w1 = (c41 + c12 + (r4 + r1) * (-z4) + (r1 + r2) * z2) * SIXTH
+    w2 = (c12 + c23 + (r1 + r2) * (-z1) + (r2 + r3) * z3) * SIXTH
+    w3 = (c23 + c34 + (r2 + r3) * (-z2) + (r3 + r4) * z4) * SIXTH
+    w4 = (c34 + c41 + (r3 + r4) * (-z3) + (r4 + r1) * z1) * SIXTH
     return W, w1, w2, w3, w4
 
 
@@ -174,7 +182,8 @@ def _row_kinematics(j, nr, r, z, vr, vz, E, alive, kind, q, chords, dt, q1, q2, 
         am, dm = 0.5 * (so0 + so1), 0.5 * (so0 - so1)
         dn = dm * cs + so3 * sn
         t0, t1, t3 = am + dn, am - dn, so3 * cs - dm * sn
-        dev0, dev1, dev2 = drr - tv / 3.0, dzz - tv / 3.0, dtt - tv / 3.0
+        tv3 = tv * THIRD
+        dev0, dev1, dev2 = drr - tv3, dzz - tv3, dtt - tv3
         rate = math.sqrt(2.0 / 3.0 * (dev0 * dev0 + dev1 * dev1 + dev2 * dev2 + 2.0 * drz * drz))
         # one length for viscosity, hourglass and time step: area over the longest side
         s12 = (r2 - r1) ** 2 + (z2 - z1) ** 2

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..geometry import ParameterError
+from .kernels import VECTOR_WIDTH
 
 
 @dataclass(frozen=True)
@@ -46,18 +47,35 @@ class MeshSpec:
             raise ParameterError("mesh", "element_size", self.element_size, "a size giving at most 5e7 elements")
 
 
-def graded(x0, core, extent, h, ratio):
-    """Node coordinates from x0: uniform cells of size h up to >= core, then growing by ``ratio`` up to extent."""
+def graded(x0, core, extent, h, ratio, multiple=1):
+    """Node coordinates from x0: uniform cells of size h up to >= core, then growing by ``ratio`` up to extent.
+
+    multiple > 1: where graded cells are needed, their number is raised until the total count of cells is a
+    multiple of ``multiple``, and they grow by the ratio <= ``ratio`` that fills the extent with them (when
+    even uniform cells of size h would overfill it, the count is left as it is).
+    """
     n_core = max(1, int(math.ceil((min(core, extent) - x0) / h - 1e-9)))
     x = list(x0 + h * np.arange(n_core + 1))
     if x[-1] >= extent - 1e-12 * extent:
         x[-1] = extent
         return np.array(x)
+    span = extent - x[-1]
     size, grown = h, []
-    while sum(grown) < extent - x[-1]:
+    while sum(grown) < span:
         size *= ratio
         grown.append(size)
-    grown = np.array(grown) * (extent - x[-1]) / sum(grown)  # last cells scaled to end exactly at extent
+    n = -(-(n_core + len(grown)) // multiple) * multiple - n_core
+    if n > len(grown) and n * h < span:
+        # h (q + q^2 + ... + q^n) grows with q from n h < span (q = 1) to > span (q = ratio): bisect for q
+        lo, hi = 1.0, ratio
+        for _ in range(100):
+            q = 0.5 * (lo + hi)
+            if h * sum(q ** k for k in range(1, n + 1)) < span:
+                lo = q
+            else:
+                hi = q
+        grown = [h * hi ** k for k in range(1, n + 1)]
+    grown = np.array(grown) * span / sum(grown)  # last cells scaled to end exactly at extent
     return np.concatenate([x, x[-1] + np.cumsum(grown)])
 
 
@@ -122,7 +140,9 @@ def polar(radii, n_theta):
 
 
 def build(spec: MeshSpec) -> Grid:
-    return Grid.tensor(graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading),
+    # columns in a multiple of the element kernels' vector width: no element of a row falls to a scalar remainder loop
+    return Grid.tensor(graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading,
+                              VECTOR_WIDTH),
                 graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
 
 

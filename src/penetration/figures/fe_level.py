@@ -419,3 +419,86 @@ def fe_contrast_ensemble(inputs, outputs, params):
                  f"(element size {1e3 * min(sizes):.3g} mm)", fontsize=9)
     fig.subplots_adjust(bottom=0.25, wspace=0.3, top=0.84)
     save(fig, outputs.png, params.dpi)
+
+
+@task
+def fe_rear_face(inputs, outputs, params):
+    """DO1 in the finite block against the semi-infinite target over realisations of the erosion chaos.
+
+    inputs.shots: the two targets' own DO1 shots (member 0; their histories
+    beside them give the final velocity); inputs.members: realisations k >= 1
+    of both. A block realisation counts as perforated when its tail left the
+    block (the run stops there, status "perforated"); its tip beyond the rear
+    face counts apart (the nose through a bulged rear face, the projectile at
+    rest or still moving), and so does a run still moving at the end time
+    (status "end_time": its depth is where the tip was then). The difference
+    of the mean depths has Welch's interval at the configured confidence.
+    """
+    from scipy import stats
+
+    rows, sizes = [], set()
+    for path in [*inputs.shots, *inputs.members]:
+        s = load_json(path)
+        sizes.add(s["element_size"])
+        final = s["final_velocity_m_s"] if "final_velocity_m_s" in s else float(_histories(str(path)).velocity.iloc[-1])
+        rows.append({"target": s["target"]["kind"], "member": int(s.get("member", 0)),
+                     "striking_velocity_ms": s.get("striking_velocity", s["velocity"]), "depth_m": s["depth_m"],
+                     "status": s["status"], "time_s": s["time_to_rest_s"], "final_velocity_ms": final,
+                     "block_depth_m": s["target"]["depth"] if s["target"]["kind"] == "block" else math.nan})
+    if len(sizes) != 1:
+        raise ValueError(f"rear-face realisations at element sizes {sorted(sizes)}; allowed: one mesh")
+    m = pd.DataFrame(rows).sort_values(["target", "member"])
+    kinds = set(m.target)
+    if kinds != {"block", "semi_infinite"}:
+        raise ValueError(f"rear-face realisations of targets {sorted(kinds)}; allowed: both 'block' and 'semi_infinite'")
+    write_csv(m, outputs.members)
+    cal = load_json(inputs.cal)
+    measured, rear = cal["data"]["measured_depth"], float(m.block_depth_m.dropna().iloc[0])
+    semi = m[m.target == "semi_infinite"].depth_m.to_numpy()
+    out = []
+    for kind in ("semi_infinite", "block"):
+        g = m[m.target == kind]
+        x = g.depth_m.to_numpy()
+        row = {"target": kind, "element_size_m": min(sizes), "realisations": x.size, "mean_m": x.mean(),
+               "std_m": x.std(ddof=1), "min_m": x.min(), "max_m": x.max(), "block_depth_m": rear,
+               "tip_beyond_rear_face": int((x > rear).sum()) if kind == "block" else 0,
+               "perforated": int((g.status == "perforated").sum()), "moving_at_end": int((g.status == "end_time").sum()),
+               "measured_depth_m": measured,
+               "confidence": params.confidence, "mean_minus_semi_infinite_m": x.mean() - semi.mean()}
+        if kind == "block":
+            va, vb = x.var(ddof=1) / x.size, semi.var(ddof=1) / semi.size
+            dof = (va + vb) ** 2 / (va ** 2 / (x.size - 1) + vb ** 2 / (semi.size - 1))
+            half = stats.t.ppf(0.5 + params.confidence / 2, dof) * math.sqrt(va + vb)
+            row |= {"interval_low_m": row["mean_minus_semi_infinite_m"] - half,
+                    "interval_high_m": row["mean_minus_semi_infinite_m"] + half}
+        else:
+            row |= {"interval_low_m": math.nan, "interval_high_m": math.nan}
+        out.append(row)
+    t = pd.DataFrame(out)
+    write_csv(t, outputs.csv)
+    fig, axes = figure(1, 8.6, 3.8)
+    ax = axes[0]
+    for k, kind in enumerate(("semi_infinite", "block")):
+        g = m[m.target == kind]
+        for status, text, style in (("rest", "at rest", dict(marker="o", ms=5)),
+                                    ("end_time", "still moving at the end time", dict(marker="^", ms=6, mfc="none")),
+                                    ("perforated", "tail out of the block", dict(marker="x", ms=7, mew=1.5))):
+            h = g[g.status == status]
+            ax.plot(k + 0.05 * (h.member.to_numpy() - g.member.max() / 2), h.depth_m, ls="none", color=f"C{k}",
+                    label=f"{kind.replace('_', '-')}: {text} ({len(h)})" if len(h) else None, **style)
+        other = g[~g.status.isin(["rest", "perforated", "end_time"])]
+        if len(other):
+            ax.plot(np.full(len(other), k), other.depth_m, "s", color=f"C{k}", mfc="none",
+                    label=f"{kind.replace('_', '-')}: other status ({len(other)})")
+        r = t[t.target == kind].iloc[0]
+        ax.errorbar([k + 0.35], [r.mean_m], yerr=[r.std_m], fmt="_", ms=12, color=f"C{k}", capsize=3,
+                    label=f"{kind.replace('_', '-')}: mean and standard deviation")
+    ax.axhline(rear, color="black", lw=1, ls="--", label=f"block's rear face ({rear:g} m)")
+    ax.axhline(measured, color="black", lw=1.2, ls=":",
+               label=f"measured DO1 depth ({measured:g} m, the calibration's target)")
+    ax.set_xticks([0, 1], ["semi-infinite", f"block ({rear:g} m deep)"])
+    ax.set(xlim=(-0.6, 1.9), ylabel="depth of the tip at the end (m)",
+           title=f"DO1 at 835 m/s, FE level, element size {1e3 * min(sizes):.3g} mm: {len(semi)} realisations per target")
+    ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    fig.subplots_adjust(left=0.08, right=0.6)
+    save(fig, outputs.png, params.dpi)

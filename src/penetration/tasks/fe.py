@@ -152,8 +152,15 @@ def fe_ensemble_shot(inputs, outputs, params):
                          "the chaos, not a change of the shot)")
     factor = 1.0 + member * step
     summary, r, settings, sc = _scene_shot(inputs, params, factor)
-    write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor},
-               outputs.json)
+    write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
+                "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
+
+
+@task
+def fe_rear_face_shot(inputs, outputs, params):
+    """A realisation of DO1's erosion chaos in one of the rear face's two targets (scenes do1 and do1_block): the
+    shot at v (1 + member x velocity_step), as fe_ensemble_shot."""
+    return fe_ensemble_shot(inputs, outputs, params)
 
 
 @task
