@@ -6,7 +6,7 @@ from types import SimpleNamespace
 import pandas as pd
 import pytest
 
-from penetration.figures.fe_level import fe_contrast_ensemble
+from penetration.figures.fe_level import fe_contrast_ensemble, fe_rear_face
 from penetration.tasks.fe import fe_ensemble_shot
 
 NOSES = ("double_ogive", "crh45", "crh3")
@@ -70,7 +70,6 @@ def test_ensemble_shot_rejects_bad_members_and_steps(member, step, field):
 
 def _rear_inputs(tmp_path, semi, block, statuses=None, size=0.00875):
     """DO1 JSONs of both targets (member 0 first); block statuses default to 'rest'."""
-    from penetration.figures.fe_level import fe_rear_face  # noqa: F401 (import check)
     shots, members = [], []
     for kind, depths in (("semi_infinite", semi), ("block", block)):
         for k, d in enumerate(depths):
@@ -90,7 +89,6 @@ def _rear_inputs(tmp_path, semi, block, statuses=None, size=0.00875):
 
 
 def test_rear_face_statistics_against_hand_values(tmp_path):
-    from penetration.figures.fe_level import fe_rear_face
     # semi-infinite 5.0, 5.1, 5.2 (mean 5.1, variance 0.01); block 5.2, 5.5, 6.5 (mean 5.7333, variance 0.4633),
     # the last perforated: two tips beyond the 5.4 m rear face, one perforation
     inputs, outputs = _rear_inputs(tmp_path, [5.0, 5.1, 5.2], [5.2, 5.5, 6.5], {("block", 2): "perforated"})
@@ -113,7 +111,6 @@ def test_rear_face_statistics_against_hand_values(tmp_path):
 
 
 def test_rear_face_needs_both_targets_on_one_mesh(tmp_path):
-    from penetration.figures.fe_level import fe_rear_face
     inputs, outputs = _rear_inputs(tmp_path, [5.0, 5.1], [5.2, 5.3])
     s = json.loads(open(inputs.members[-1]).read())
     s["element_size"] = 0.007

@@ -465,14 +465,9 @@ def fe_rear_face(inputs, outputs, params):
                "perforated": int((g.status == "perforated").sum()), "moving_at_end": int((g.status == "end_time").sum()),
                "measured_depth_m": measured,
                "confidence": params.confidence, "mean_minus_semi_infinite_m": x.mean() - semi.mean()}
-        if kind == "block":
-            va, vb = x.var(ddof=1) / x.size, semi.var(ddof=1) / semi.size
-            dof = (va + vb) ** 2 / (va ** 2 / (x.size - 1) + vb ** 2 / (semi.size - 1))
-            half = stats.t.ppf(0.5 + params.confidence / 2, dof) * math.sqrt(va + vb)
-            row |= {"interval_low_m": row["mean_minus_semi_infinite_m"] - half,
-                    "interval_high_m": row["mean_minus_semi_infinite_m"] + half}
-        else:
-            row |= {"interval_low_m": math.nan, "interval_high_m": math.nan}
+        ci = (stats.ttest_ind(x, semi, equal_var=False).confidence_interval(params.confidence) if kind == "block"
+              else (math.nan, math.nan))
+        row |= {"interval_low_m": float(ci[0]), "interval_high_m": float(ci[1])}
         out.append(row)
     t = pd.DataFrame(out)
     write_csv(t, outputs.csv)
