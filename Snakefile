@@ -53,6 +53,12 @@ def fe_cfg(profile):
     return {**config["fe"], "profiles": {**config["fe"]["profiles"], profile: {"element_size": h, "mesh_study": [h]}}}
 
 
+def cfg_slice(*keys, **slices):
+    """The config sections a task reads, as its params: a change elsewhere in the config leaves its job alone
+    (Snakemake reruns a job whose params changed)."""
+    return {**{k: config[k] for k in keys}, **slices}
+
+
 def fe_calibration(profile):
     return f"results/fe/{profile}/calibration_h{fe_cfg(profile)['profiles'][profile]['element_size']}.json"
 

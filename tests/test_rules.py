@@ -175,3 +175,14 @@ def test_every_rule_declares_threads_resources_benchmark_and_log():
         for key in ("threads:", "resources: mem_mb=", "runtime=", f'benchmark: "results/benchmarks/{name}', "log:",
                     '**task("'):
             assert key in block, f"rule {name} lacks {key}"
+
+
+def test_no_rule_takes_the_whole_config_as_a_param():
+    """Snakemake re-runs a job whose params changed: a rule holding the whole config would re-run (validation_fe:
+    minutes) after any edit of it, a figure's dpi included. Rules take the sections their tasks read
+    (Snakefile's cfg_slice)."""
+    import re
+    text = "\n".join(p.read_text() for p in sorted((ROOT / "workflow/rules").glob("*.smk")))
+    text += (ROOT / "Snakefile").read_text()
+    whole = re.findall(r"^\s*(?:params:)?.*\b\w+=(?:config\s*[,)\n]|lambda \w+: \{\*\*config\b)", text, re.M)
+    assert whole == []

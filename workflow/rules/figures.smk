@@ -258,7 +258,7 @@ rule validation_level:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
            cal_cavity="results/calibration/cavity_do1.json",
     output: csv="results/validation/{level}.csv",
-    params: cfg=config, law=config["validation"]["strength_law"], level=lambda w: w.level,
+    params: cfg=cfg_slice("cavity", "validation", "fe"), law=config["validation"]["strength_law"], level=lambda w: w.level,
     wildcard_constraints: level="trajectory|cavity",
     threads: 2
     resources: mem_mb=2000, runtime=20
@@ -271,7 +271,7 @@ rule validation_fe:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
            cal_fe=lambda w: fe_calibration(w.profile),
     output: csv="results/validation/fe_{profile}.csv",
-    params: cfg=lambda w: {**config, "fe": fe_cfg(w.profile)}, law=config["validation"]["strength_law"],
+    params: cfg=lambda w: cfg_slice("cavity", "validation", fe=fe_cfg(w.profile)), law=config["validation"]["strength_law"],
             profile=lambda w: w.profile,
     threads: 2
     resources: mem_mb=2000, runtime=60
@@ -298,7 +298,7 @@ rule validation_levels:
 rule hjc_scaling:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
     output: csv="figures/hjc_scaling.csv",
-    params: cfg=config,
+    params: cfg=cfg_slice("cavity"),
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/hjc_scaling.tsv"
@@ -321,7 +321,7 @@ rule accuracy_cost:
            fe_benchmarks=[f"results/benchmarks/fe_shot_{p}_table3_{nose}_{v}.tsv" for p in ACCURACY_PROFILES
                           for nose, v in FE_SCENES["table3"]],
     output: csv="figures/accuracy_cost.csv", timing="figures/timing/accuracy_cost.csv",
-    params: cfg=config, fe_profiles=ACCURACY_PROFILES,
+    params: cfg=cfg_slice("cavity"), fe_profiles=ACCURACY_PROFILES,
     threads: 2
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/accuracy_cost.tsv"
@@ -349,7 +349,7 @@ rule sweep_level:
     input: **task("tasks.levels"), reference=config["reference"],
            cal_cavity="results/calibration/cavity_do1.json", cal_fe=fe_calibration(SWEEP.get("fe_profile", "ci")),
     output: csv="results/sweep/{level}_n{n}.csv",
-    params: cfg=config, level=lambda w: w.level, n=lambda w: w.n,
+    params: cfg=cfg_slice("cavity", "validation", "fe", "sweep"), level=lambda w: w.level, n=lambda w: w.n,
     wildcard_constraints: level="analytic|trajectory|cavity|fe", n=r"[0-9]+",
     threads: 2
     resources: mem_mb=2000, runtime=60
