@@ -95,16 +95,18 @@ def _best(step, steps, repeat, restore=None):
 
 
 def step_bytes(m: Model):
-    """Bytes one explicit step reads and writes, each array once (element pass, node pass, move)."""
+    """Bytes one explicit step reads and writes, each array once (element pass, node pass, move): every row of
+    E read, the rows the element pass stores for every element (kernels.STEP_STORES) written."""
     nodes = [m.r, m.z, m.vr, m.vz]
-    element = 2 * m.E.nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
+    element = m.E.nbytes + m.E[list(K.STEP_STORES)].nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
     # the dashpot arrays are read on the grid's edges and in rows flagged in rowdash only
     g = m.grid
     edge = np.zeros((g.nz + 1, g.nr + 1), bool)
     edge[[0, -1], :] = True
     edge[:, [0, -1]] = True
     edge[m.rowdash != 0, :] = True
-    node = m.F.nbytes + m.alive.nbytes + 2 * (m.vr.nbytes + m.vz.nbytes) + m.mass.nbytes + m.nstate.nbytes + m.fix.nbytes \
+    # the velocities read and written, and the old ones stored (vr0, vz0, the size of vr, vz)
+    node = m.F.nbytes + m.alive.nbytes + 3 * (m.vr.nbytes + m.vz.nbytes) + m.mass.nbytes + m.nstate.nbytes + m.fix.nbytes \
         + m.dash[:, edge.ravel()].nbytes + m.rowdash.nbytes
     move = 2 * (m.r.nbytes + m.z.nbytes) + m.vr.nbytes + m.vz.nbytes + m.nstate.nbytes
     return element + node + move

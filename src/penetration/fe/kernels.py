@@ -35,6 +35,9 @@ from .materials import HJC_KIND
 # element fields (rows of E)
 SRR, SZZ, STT, SRZ, P, QV, MUMAX, MUP, DMG, EPSP, EPSEFF, IE, V0, MASS = range(14)
 N_FIELDS = 14
+# the rows phase 1 of the element pass stores for every element, each step (the others are stored only where
+# phase 2 updates an element: MUP, DMG; or never: V0, MASS); the speed benchmark counts the bytes a step moves by them
+STEP_STORES = (SRR, SZZ, STT, SRZ, P, MUMAX, QV, IE, EPSEFF, EPSP)
 # controls (ctl)
 C_DT, C_QH, C_Q1, C_Q2, C_EROSION, C_EROSION_VALUE, C_GUARD, C_DTMIN = range(8)
 N_CTL = 8
