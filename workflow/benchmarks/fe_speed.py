@@ -23,8 +23,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
 import time
 from pathlib import Path
 
@@ -32,6 +30,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from nstar_speed import machine
 from penetration.fe import kernels as K
 from penetration.fe.mesh import MeshSpec, build
 from penetration.fe.solver import Controls, Model
@@ -174,8 +173,7 @@ def main():
     ap.add_argument("--do1", action="store_true", help="also time the DO1 shot at the default mesh (needs results/fe/full)")
     args = ap.parse_args()
     numba.set_num_threads(args.threads)
-    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}, "
-          f"numba {numba.__version__}, threads {numba.get_num_threads()}")
+    print(f"machine: {machine()}, numba {numba.__version__}, threads {numba.get_num_threads()}")
     bw0 = stream_triad()
     print(f"STREAM triad: {bw0 / 1e9:.1f} GB/s (measured again at the end)")
     # a DO1-like target (the core and graded far field of the default mesh, 2.5 m deep) in motion
