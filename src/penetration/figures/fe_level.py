@@ -387,14 +387,14 @@ def fe_contrast_ensemble(inputs, outputs, params):
             a, b = depth[(num, v)], depth[(den, v)]
             x = np.array([a[k] / b[k] for k in sorted(a) if k in b])
             members[(name, v)] = x
-            half = stats.t.ppf(0.5 + params.confidence / 2, x.size - 1) * x.std(ddof=1) / math.sqrt(x.size)
+            lo, hi = stats.ttest_1samp(x, 1.0).confidence_interval(params.confidence)
             p = paper_ratio[(name, v)]
             rows.append({"contrast": name, "velocity_ms": v, "element_size_m": min(sizes), "realisations": x.size,
                          "ratio_member0": x[0],
                          "mean_ratio": x.mean(), "std_ratio": x.std(ddof=1), "min_ratio": x.min(), "max_ratio": x.max(),
-                         "interval_low": x.mean() - half, "interval_high": x.mean() + half, "confidence": params.confidence,
+                         "interval_low": float(lo), "interval_high": float(hi), "confidence": params.confidence,
                          "paper_sim_ratio": p, "mean_minus_paper_points": 100 * (x.mean() - p),
-                         "paper_inside_interval": bool(x.mean() - half <= p <= x.mean() + half)})
+                         "paper_inside_interval": bool(lo <= p <= hi)})
     t = pd.DataFrame(rows)
     write_csv(t, outputs.csv)
     fig, axes = figure(3, 3.6, 3.6)
