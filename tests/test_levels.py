@@ -15,7 +15,7 @@ from penetration import levels as L
 from penetration.cavity import Controls as CavityControls, Mesh as CavityMesh
 from penetration.geometry import Ogive, ParameterError
 from penetration.hjc import HJC
-from penetration.tasks.levels import context_from_pipeline
+from penetration.tasks.levels import context_from_files, context_from_pipeline
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -206,6 +206,22 @@ def test_a_missing_calibration_says_how_to_build_it(tmp_path):
     (tmp_path / "workflow/reference").symlink_to(ROOT / "workflow/reference")
     out = cli("dop", *SHOT, "--model", "cavity", "--root", str(tmp_path))
     assert out.returncode == 2 and "cavity_do1.json" in out.stderr and "--strength-scale" in out.stderr
+
+
+def test_the_trajectory_and_cavity_levels_read_no_fe_section(tmp_path):
+    """The validation rules of the trajectory and cavity levels pass no fe section (an fe edit must not rerun
+    them): the context then leaves the fe settings at their defaults and refuses an fe calibration."""
+    import yaml
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    ref = ROOT / cfg["reference"]
+    full = context_from_files(cfg, ref)
+    lean = context_from_files({k: cfg[k] for k in ("cavity", "validation")}, ref)
+    assert full.fe_settings is not None and lean.fe_settings is None
+    assert lean.base == full.base and lean.cavity_mesh == full.cavity_mesh and lean.cavity_velocities == full.cavity_velocities
+    cal = tmp_path / "cal.json"
+    cal.write_text(json.dumps({"element_size": 0.01, "fs": 1.0, "elements_across_radius": 8}))
+    with pytest.raises(ValueError, match="fe section"):
+        context_from_files({k: cfg[k] for k in ("cavity", "validation")}, ref, fe_cal=cal)
 
 
 def test_predict_at_the_trajectory_level_adds_every_column(tmp_path):

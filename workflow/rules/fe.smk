@@ -224,17 +224,34 @@ def fe_ensemble_members(profile):
     return [f"results/fe/{profile}/ensemble/{nose}_{v}_m{k}.json" for nose, v in FE_SCENES["table3"] for k in range(1, n + 1)]
 
 
+REAR_FACE_SCENES = ("do1", "do1_block")
+
+
+def fe_rear_face_members(profile):
+    """The JSONs of the rear-face ensemble's members k >= 1 (member 0: the scenes' own shots)."""
+    n = config["fe_rear_face"]["members"]
+    return [f"results/fe/{profile}/rear_face/{scene}_m{k}.json" for scene in REAR_FACE_SCENES for k in range(1, n + 1)]
+
+
+# The shots whose realisations of the erosion chaos the ensembles run, per family: name -> (scene, nose, velocity)
+# (the Table 3 ensemble's velocity as its path spells it)
+FE_REALISED = {"ensemble": {f"{nose}_{v}": ("table3", nose, f"{v}") for nose, v in FE_SCENES["table3"]},
+               "rear_face": {scene: (scene, *FE_SCENES[scene][0]) for scene in REAR_FACE_SCENES}}
+
+
 rule fe_ensemble_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/table3.yaml", schema=SCENE_SCHEMA,
-    output: json="results/fe/{profile}/ensemble/{nose}_{velocity}_m{member}.json",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
-            velocity=lambda w: w.velocity, member=lambda w: w.member,
-            velocity_step=config["fe_ensemble"]["velocity_step"],
+           cal=lambda w: fe_calibration(w.profile), scene=lambda w: f"workflow/scenes/fe/{FE_REALISED[w.family][w.shot][0]}.yaml",
+           schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/{family}/{shot}_m{member}.json",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
+            nose=lambda w: FE_REALISED[w.family][w.shot][1], velocity=lambda w: FE_REALISED[w.family][w.shot][2],
+            member=lambda w: w.member, velocity_step=config["fe_ensemble"]["velocity_step"],
+    wildcard_constraints: family="ensemble|rear_face", member=r"\d+",
     threads: 2
-    resources: mem_mb=2000, runtime=30
-    benchmark: "results/benchmarks/fe_ensemble_shot_{profile}_{nose}_{velocity}_m{member}.tsv"
-    log: "results/logs/fe_ensemble_shot_{profile}_{nose}_{velocity}_m{member}.log",
+    resources: mem_mb=2000, runtime=lambda w: 30 if w.family == "ensemble" else 10
+    benchmark: "results/benchmarks/fe_ensemble_shot_{family}_{profile}_{shot}_m{member}.tsv"
+    log: "results/logs/fe_ensemble_shot_{family}_{profile}_{shot}_m{member}.log",
     script: "../scripts/run_task.py"
 
 
@@ -248,30 +265,6 @@ rule fe_contrast_ensemble:
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_ensemble.tsv"
     log: "results/logs/fe_contrast_ensemble.log",
-    script: "../scripts/run_task.py"
-
-
-REAR_FACE_SCENES = ("do1", "do1_block")
-
-
-def fe_rear_face_members(profile):
-    """The JSONs of the rear-face ensemble's members k >= 1 (member 0: the scenes' own shots)."""
-    n = config["fe_rear_face"]["members"]
-    return [f"results/fe/{profile}/rear_face/{scene}_m{k}.json" for scene in REAR_FACE_SCENES for k in range(1, n + 1)]
-
-
-rule fe_rear_face_shot:
-    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/{scene}.yaml", schema=SCENE_SCHEMA,
-    output: json="results/fe/{profile}/rear_face/{scene}_m{member}.json",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
-            nose=lambda w: FE_SCENES[w.scene][0][0], velocity=lambda w: FE_SCENES[w.scene][0][1], member=lambda w: w.member,
-            velocity_step=config["fe_ensemble"]["velocity_step"],
-    wildcard_constraints: scene="|".join(sorted(REAR_FACE_SCENES, key=len, reverse=True)), member=r"\d+",
-    threads: 2
-    resources: mem_mb=2000, runtime=10
-    benchmark: "results/benchmarks/fe_rear_face_shot_{profile}_{scene}_m{member}.tsv"
-    log: "results/logs/fe_rear_face_shot_{profile}_{scene}_m{member}.log",
     script: "../scripts/run_task.py"
 
 

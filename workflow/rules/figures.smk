@@ -258,7 +258,7 @@ rule validation_level:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
            cal_cavity="results/calibration/cavity_do1.json",
     output: csv="results/validation/{level}.csv",
-    params: cfg=cfg_slice("cavity", "validation", "fe"), law=config["validation"]["strength_law"], level=lambda w: w.level,
+    params: cfg=cfg_slice("cavity", "validation"), law=config["validation"]["strength_law"], level=lambda w: w.level,
     wildcard_constraints: level="trajectory|cavity",
     threads: 2
     resources: mem_mb=2000, runtime=20

@@ -137,7 +137,8 @@ def fe_shot(inputs, outputs, params):
 
 @task
 def fe_ensemble_shot(inputs, outputs, params):
-    """A realisation of a shot's erosion chaos: the shot at v (1 + member x velocity_step).
+    """A realisation of a shot's erosion chaos: the shot at v (1 + member x velocity_step) (the Table 3 ensemble's
+    shots and the rear face's two targets).
 
     The element erosion makes the FE depth chaotic (a change of the striking
     velocity far below any physical effect moves it by a few tenths of a per
@@ -154,13 +155,6 @@ def fe_ensemble_shot(inputs, outputs, params):
     summary, r, settings, sc = _scene_shot(inputs, params, factor)
     write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
                 "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
-
-
-@task
-def fe_rear_face_shot(inputs, outputs, params):
-    """A realisation of DO1's erosion chaos in one of the rear face's two targets (scenes do1 and do1_block): the
-    shot at v (1 + member x velocity_step), as fe_ensemble_shot."""
-    return fe_ensemble_shot(inputs, outputs, params)
 
 
 @task

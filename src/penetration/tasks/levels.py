@@ -25,17 +25,20 @@ from .fe import fe_settings
 
 def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profile="full", strength_law=None) -> Context:
     """The levels' context from the config mapping, the reference CSV and the DO1 calibration files (None: that
-    level is left without its calibration and refuses to run, saying how to build it)."""
+    level is left without its calibration and refuses to run, saying how to build it). A mapping without an fe
+    section leaves the fe level unconfigured (the trajectory and cavity levels do not read it)."""
     refs = reference.load_reference(reference_path)
     mesh, controls = cavity_settings(cfg["cavity"])
+    fe = {"fe_settings": fe_settings(cfg["fe"], profile), "fe_target_radius": cfg["fe"]["target_radius"]} if "fe" in cfg else {}
     ctx = Context(base=configured_hjc(refs, cfg["cavity"]), strength_law=strength_law or cfg["validation"]["strength_law"],
                   cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,
-                  cavity_rtol=cfg["cavity"]["rtol"], fe_settings=fe_settings(cfg["fe"], profile),
-                  fe_target_radius=cfg["fe"]["target_radius"])
+                  cavity_rtol=cfg["cavity"]["rtol"], **fe)
     if cavity_cal is not None:
         ctx.strength_scale = load_json(cavity_cal)["strength_scale"]
         ctx.strength_scale_source = f"calibrated on DO1, {cavity_cal}"
     if fe_cal is not None:
+        if "fe" not in cfg:
+            raise ValueError(f"{fe_cal}: an fe calibration needs the config's fe section (its mesh), which is missing")
         cal = load_json(fe_cal)
         if not math.isclose(cal["element_size"], ctx.fe_settings.element_size):
             raise ValueError(f"{fe_cal}: calibrated at element size {cal['element_size']} m, the {profile} profile "

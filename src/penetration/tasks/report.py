@@ -18,6 +18,8 @@ from ..io import task, write_text
 @task
 def report(inputs, outputs, params):
     nb = jupytext.read(inputs.source)
+    for k, cell in enumerate(nb.cells):  # ids by position (jupytext draws random ones): the same source renders the same HTML
+        cell.id = f"cell-{k}"
     os.environ["PENETRATION_FE_PROFILE"] = params.profile
     NotebookClient(nb, timeout=params.timeout_s, kernel_name="python3",
                    resources={"metadata": {"path": os.getcwd()}}).execute()
