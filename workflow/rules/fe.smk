@@ -239,15 +239,20 @@ FE_REALISED = {"ensemble": {f"{nose}_{v}": ("table3", nose, f"{v}") for nose, v 
                "rear_face": {scene: (scene, *FE_SCENES[scene][0]) for scene in REAR_FACE_SCENES}}
 
 
+def realised(w):
+    """(scene, nose, velocity) of a realisation's shot."""
+    return FE_REALISED[w.family][w.shot]
+
+
 rule fe_ensemble_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), scene=lambda w: f"workflow/scenes/fe/{FE_REALISED[w.family][w.shot][0]}.yaml",
-           schema=SCENE_SCHEMA,
+           cal=lambda w: fe_calibration(w.profile), scene=lambda w: f"workflow/scenes/fe/{realised(w)[0]}.yaml", schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{family}/{shot}_m{member}.json",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
-            nose=lambda w: FE_REALISED[w.family][w.shot][1], velocity=lambda w: FE_REALISED[w.family][w.shot][2],
+            nose=lambda w: realised(w)[1], velocity=lambda w: realised(w)[2],
             member=lambda w: w.member, velocity_step=config["fe_ensemble"]["velocity_step"],
-    wildcard_constraints: family="ensemble|rear_face", member=r"\d+",
+    wildcard_constraints: family="|".join(FE_REALISED), member=r"\d+",
+                          shot="|".join(sorted((s.replace(".", r"\.") for f in FE_REALISED.values() for s in f), key=len, reverse=True)),
     threads: 2
     resources: mem_mb=2000, runtime=lambda w: 30 if w.family == "ensemble" else 10
     benchmark: "results/benchmarks/fe_ensemble_shot_{family}_{profile}_{shot}_m{member}.tsv"

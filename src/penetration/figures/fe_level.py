@@ -387,7 +387,7 @@ def fe_contrast_ensemble(inputs, outputs, params):
             a, b = depth[(num, v)], depth[(den, v)]
             x = np.array([a[k] / b[k] for k in sorted(a) if k in b])
             members[(name, v)] = x
-            lo, hi = stats.ttest_1samp(x, 1.0).confidence_interval(params.confidence)
+            lo, hi = stats.ttest_1samp(x, 1.0).confidence_interval(params.confidence)  # of the mean (any popmean)
             p = paper_ratio[(name, v)]
             rows.append({"contrast": name, "velocity_ms": v, "element_size_m": min(sizes), "realisations": x.size,
                          "ratio_member0": x[0],
