@@ -186,8 +186,23 @@ def test_simulate_writes_the_history(tmp_path):
     assert h.velocity_m_s.iloc[0] == 835.0 and h.velocity_m_s.iloc[-1] == 0.0
 
 
+def test_keys_may_follow_the_options():
+    """key=value pairs after an option are the same keys as before it (argparse alone would reject them)."""
+    before = cli("dop", *SHOT, "--model", "trajectory", "--json")
+    after = cli("dop", *SHOT[:3], "--model", "trajectory", *SHOT[3:5], "--json", SHOT[5])
+    assert before.returncode == 0 and after.returncode == 0, after.stderr
+    a, b = json.loads(before.stdout), json.loads(after.stdout)
+    assert a.pop("wall_time_s") > 0 and b.pop("wall_time_s") > 0
+    assert a == b
+    nstar = cli("nstar", "ogive", "--json", "psi=3", "radius=0.07")
+    assert nstar.returncode == 0 and json.loads(nstar.stdout)["nstar"] == pytest.approx(23 / 216, rel=1e-10)
+
+
 @pytest.mark.parametrize("args,needle", [
     (("dop", "ogive", "psi=3", "radius=0.07", "velocity=835", "fc=48e6"), "shot.mass"),
+    (("dop", *SHOT, "--json", "--colour"), "unrecognized arguments: --colour"),
+    (("dop", *SHOT, "--json", "stray"), "unrecognized arguments: stray"),
+    (("dop", *SHOT, "--model", "fe", "psi=2"), "each key once (psi=3 is given already)"),
     (("dop", *SHOT, "density=abc"), "shot.density"),
     (("dop", *SHOT[:-1], "fc=500e6", "--model", "cavity", "--strength-scale", "0.6"), "shot.fc"),
     (("dop", *SHOT, "--model", "cavity", "--strength-scale", "-1"), "--strength-scale"),

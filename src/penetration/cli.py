@@ -227,8 +227,21 @@ def _fail(message) -> int:
     return 2
 
 
+def _parse(argv):
+    """The arguments, with key=value pairs taken wherever they stand: argparse alone takes positionals only
+    before the first option, so `dop ogive psi=3 --model fe length=0.3` would reject length=0.3."""
+    p = _parser()
+    args, extra = p.parse_known_args(argv)
+    keys = [a for a in extra if "=" in a and not a.startswith("-")]
+    if extra and (len(keys) < len(extra) or not hasattr(args, "params")):
+        p.error("unrecognized arguments: " + " ".join(extra))
+    if keys:
+        args.params = [*args.params, *keys]
+    return args
+
+
 def main(argv=None) -> int:
-    args = _parser().parse_args(argv)
+    args = _parse(argv)
     if args.command == "predict":
         return _predict(args)
     if args.command in ("dop", "simulate"):
