@@ -249,3 +249,19 @@ def test_predict_at_the_trajectory_level_adds_every_column(tmp_path):
     assert list(got.columns[-5:]) == ["model", "dop_pred_m", "time_to_rest_pred_s", "peak_deceleration_pred_m_s2",
                                       "wall_time_s"]
     assert (got.model == "trajectory").all() and np.all(got.dop_pred_m > 0) and np.all(got.time_to_rest_pred_s > 0)
+
+
+def test_table3_cells_are_matched_by_velocity_and_nose_not_by_row():
+    """accuracy_cost compares the FE tables (noses in the order crh3, crh45, double_ogive) with figures/table3.csv
+    (double_ogive, crh45, crh3): the deviation of a cell must not depend on the order of the rows."""
+    import pandas as pd
+    from penetration.tasks.levels import cell_deviation
+    ref = pd.DataFrame({"velocity_ms": [500, 500, 800, 800], "nose": ["double_ogive", "crh3"] * 2,
+                        "paper_sim_m": [2.0, 1.0, 4.0, 3.0]})
+    fe = pd.DataFrame({"velocity_ms": [800, 500, 800, 500], "nose": ["crh3", "crh3", "double_ogive", "double_ogive"],
+                       "fe_m": [3.3, 1.1, 4.0, 1.0]})
+    dev = cell_deviation(fe, ref, "fe_m", "paper_sim_m")
+    assert np.allclose(np.sort(dev), np.sort([0.1, 0.1, 0.0, 0.5]))
+    assert np.isclose(cell_deviation(fe, fe.iloc[::-1], "fe_m", "fe_m").max(), 0.0)
+    with pytest.raises(ValueError, match="without a partner"):
+        cell_deviation(fe.iloc[:3], ref, "fe_m", "paper_sim_m")
