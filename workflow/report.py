@@ -255,6 +255,16 @@ for path in (FIG / "cavity_table3_sensitivity.png",):
         figure(path)
 
 # %% [markdown]
+# ### Verification of the finite-element level
+#
+# Each problem against a closed form or a published solution, with the interval accepted around the reference
+# (`figures/fe_verification.csv`; `penetration.fe.verification`, the same problems the tests run).
+
+# %%
+if (FIG / "fe_verification.csv").exists():
+    table(pd.read_csv(FIG / "fe_verification.csv"))
+
+# %% [markdown]
 # ## Users' shots at every level, and what accuracy costs
 #
 # Nothing is fitted to the 25 development shots (Forrestal et al. 2003, 1994): the analytic and trajectory

@@ -155,6 +155,16 @@ rule fe_nose_pressure:
     script: "../scripts/run_task.py"
 
 
+rule fe_verification:
+    input: **task("tasks.verification"),
+    output: csv="figures/fe_verification.csv",
+    threads: 2
+    resources: mem_mb=1000, runtime=10
+    benchmark: "results/benchmarks/fe_verification.tsv"
+    log: "results/logs/fe_verification.log",
+    script: "../scripts/run_task.py"
+
+
 rule fe_summary:
     input: **task("figures.fe_level"), shots=fe_shots("table3") + fe_shots("fig15") + fe_shots("do1"),
            do1="results/fe/{profile}/do1/double_ogive_835.json", block="results/fe/{profile}/do1_block/double_ogive_835.json",
