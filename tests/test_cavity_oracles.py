@@ -1,13 +1,9 @@
-"""Checks of the dynamic spherical cavity-expansion oracles in tests/oracles/cavity.py."""
-import sys
-from pathlib import Path
-
+"""Checks of the dynamic spherical cavity-expansion oracles in penetration/cavity_oracles.py."""
 import numpy as np
 import pytest
 from scipy.integrate import quad
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from oracles.cavity import (  # noqa: E402
+from penetration.cavity_oracles import (
     dilatational_speed, elastic_fields, elastic_region_fields, elastic_wall_stress,
     epp_wall_stress, hill_static_pressure, mohr_coulomb_static_wall_stress,
     mohr_coulomb_wall_stress, plastic_solution)

@@ -255,14 +255,17 @@ for path in (FIG / "cavity_table3_sensitivity.png",):
         figure(path)
 
 # %% [markdown]
-# ### Verification of the finite-element level
+# ### Verification of the cavity and finite-element levels
 #
-# Each problem against a closed form or a published solution, with the interval accepted around the reference
-# (`figures/fe_verification.csv`; `penetration.fe.verification`, the same problems the tests run).
+# Each problem against a closed form, a published solution or an independent oracle solution, with the interval
+# accepted around the reference (`figures/cavity_verification.csv`, `figures/fe_verification.csv`; written by
+# `penetration.cavity_verification` and `penetration.fe.verification`, whose problems the tests run).
 
 # %%
-if (FIG / "fe_verification.csv").exists():
-    table(pd.read_csv(FIG / "fe_verification.csv"))
+for name in ("cavity_verification.csv", "fe_verification.csv"):
+    if (FIG / name).exists():
+        md(f"`figures/{name}`")
+        table(pd.read_csv(FIG / name))
 
 # %% [markdown]
 # ## Users' shots at every level, and what accuracy costs

@@ -46,3 +46,13 @@ rule scene_cavity:
     benchmark: "results/benchmarks/scene_cavity_{scene}.tsv"
     log: "results/logs/scene_cavity_{scene}.log",
     script: "../scripts/run_task.py"
+
+
+rule cavity_verification:
+    input: **task("tasks.verification"),
+    output: csv="figures/cavity_verification.csv",
+    threads: 2
+    resources: mem_mb=1000, runtime=10
+    benchmark: "results/benchmarks/cavity_verification.tsv"
+    log: "results/logs/cavity_verification.log",
+    script: "../scripts/run_task.py"

@@ -8,45 +8,17 @@ throughout (the ``unit`` column names them).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
 
 import numpy as np
 
 from .. import cavity
+from ..checks import Check, below as _below, near as _near
 from ..geometry import Flat
 from ..hjc import HJC
 from . import kernels as K
 from .materials import Elastic, VonMises
 from .mesh import Grid, body_outline, polar
 from .solver import Controls, Model, Projectile, run
-
-
-@dataclass(frozen=True)
-class Check:
-    problem: str
-    quantity: str
-    ours: float
-    reference: float  # the closed-form or published value (NaN where the check is a bound only)
-    low: float  # the accepted interval [low, high]
-    high: float
-    unit: str
-    source: str
-
-    @property
-    def holds(self) -> bool:
-        return bool(self.low <= self.ours <= self.high)
-
-    def row(self) -> dict:
-        return {**asdict(self), "holds": self.holds}
-
-
-def _near(problem, quantity, ours, reference, rtol, unit, source):
-    return Check(problem, quantity, float(ours), reference, reference - rtol * abs(reference),
-                 reference + rtol * abs(reference), unit, source)
-
-
-def _below(problem, quantity, ours, bound, unit, source):
-    return Check(problem, quantity, float(ours), math.nan, -math.inf, bound, unit, source)
 
 
 def _energy(problem, result, bound):

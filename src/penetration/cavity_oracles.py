@@ -1,4 +1,5 @@
-"""Independent reference solutions ("oracles") for dynamic spherical cavity expansion.
+"""Independent reference solutions ("oracles") for dynamic spherical cavity expansion (similarity ODEs and closed forms,
+written apart from the solver in penetration.cavity; the verification of the cavity level compares with them).
 
 Problem
 -------

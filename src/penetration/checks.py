@@ -1,0 +1,37 @@
+"""A verification check: a quantity we compute, its independent reference (closed form, published or oracle
+solution) and the interval accepted around it; the verification modules return lists of them, the tests assert
+them and the pipeline writes them out."""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True)
+class Check:
+    problem: str
+    quantity: str
+    ours: float
+    reference: float  # the closed-form or published value (NaN where the check is a bound only)
+    low: float  # the accepted interval [low, high]
+    high: float
+    unit: str
+    source: str
+
+    @property
+    def holds(self) -> bool:
+        return bool(self.low <= self.ours <= self.high)
+
+    def row(self) -> dict:
+        return {**asdict(self), "holds": self.holds}
+
+
+def near(problem, quantity, ours, reference, rtol, unit, source):
+    """ours within rtol (relative) of reference."""
+    return Check(problem, quantity, float(ours), reference, reference - rtol * abs(reference),
+                 reference + rtol * abs(reference), unit, source)
+
+
+def below(problem, quantity, ours, bound, unit, source):
+    """ours at most bound (no reference value)."""
+    return Check(problem, quantity, float(ours), math.nan, -math.inf, bound, unit, source)
