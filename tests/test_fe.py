@@ -321,3 +321,12 @@ def test_an_elastic_pass_changes_no_row_of_E_outside_the_step_stores():
     assert sorted(others) == sorted([K.MUP, K.DMG, K.V0, K.MASS])
     assert np.array_equal(m.E[others], E0[others])
     assert all(np.any(m.E[f] != E0[f]) for f in (K.SRR, K.SZZ, K.STT, K.SRZ, K.P, K.IE, K.EPSEFF))
+
+
+def test_a_check_row_carries_its_deviation_and_verdict():
+    from penetration.checks import below, near
+    c = near("p", "q", 2.2, 2.0, 0.05, "m", "s")
+    assert not c.holds and c.rel_dev == pytest.approx(0.1, rel=1e-12)
+    assert list(c.row()) == ["problem", "quantity", "ours", "reference", "rel_dev", "low", "high", "unit", "source", "holds"]
+    b = below("p", "q", 0.5, 1.0, "1", "s")
+    assert b.holds and math.isnan(b.rel_dev) and b.row()["holds"] is True

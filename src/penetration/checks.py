@@ -22,8 +22,15 @@ class Check:
     def holds(self) -> bool:
         return bool(self.low <= self.ours <= self.high)
 
+    @property
+    def rel_dev(self) -> float:
+        """ours / reference - 1 (NaN without a reference)."""
+        return self.ours / self.reference - 1 if math.isfinite(self.reference) and self.reference != 0 else math.nan
+
     def row(self) -> dict:
-        return {**asdict(self), "holds": self.holds}
+        row = asdict(self)
+        return {**{k: row[k] for k in ("problem", "quantity", "ours", "reference")}, "rel_dev": self.rel_dev,
+                **{k: row[k] for k in ("low", "high", "unit", "source")}, "holds": self.holds}
 
 
 def near(problem, quantity, ours, reference, rtol, unit, source):
