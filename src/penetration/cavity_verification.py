@@ -14,7 +14,7 @@ import numpy as np
 from .cavity import Controls, Mesh, Simple, expand, single_expansion
 from .cavity_level import quasi_static_stress
 from .cavity_oracles import epp_wall_stress, hill_static_pressure, mohr_coulomb_wall_stress
-from .checks import below, near
+from .checks import below, near, run_all
 from .hjc import HJC
 
 # the concrete-like elastic constants of the oracle comparisons (Table 1's density, bulk and shear moduli)
@@ -86,9 +86,5 @@ def hjc_convergence():
 
 
 def all_checks(log=print):
-    checks = []
-    for problem in (small_strain_elastic, plastic_similarity, quasi_static_hill, hjc_convergence):
-        new = problem()
-        log(f"{problem.__name__}: {sum(c.holds for c in new)} of {len(new)} checks hold")
-        checks += new
-    return checks
+    return run_all([(p.__name__, p) for p in (small_strain_elastic, plastic_similarity, quasi_static_hill, hjc_convergence)],
+                   log)

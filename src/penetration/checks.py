@@ -42,3 +42,13 @@ def near(problem, quantity, ours, reference, rtol, unit, source):
 def below(problem, quantity, ours, bound, unit, source):
     """ours at most bound (no reference value)."""
     return Check(problem, quantity, float(ours), math.nan, -math.inf, bound, unit, source)
+
+
+def run_all(problems, log=print):
+    """The checks of every (label, problem) pair, the problem a callable returning Checks; one log line each."""
+    checks = []
+    for label, problem in problems:
+        new = problem()
+        log(f"{label}: {sum(c.holds for c in new)} of {len(new)} checks hold")
+        checks += new
+    return checks

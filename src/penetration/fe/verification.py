@@ -12,13 +12,18 @@ import math
 import numpy as np
 
 from .. import cavity
-from ..checks import Check, below as _below, near as _near
+from ..checks import Check, below as _below, near as _near, run_all
 from ..geometry import Flat
 from ..hjc import HJC
 from . import kernels as K
 from .materials import Elastic, VonMises
 from .mesh import Grid, body_outline, polar
 from .solver import Controls, Model, Projectile, run
+
+
+def _elastic(rho, K, G):
+    """Linear elastic material from its bulk and shear moduli."""
+    return Elastic(rho, 9 * K * G / (3 * K + G), (3 * K - 2 * G) / (2 * (3 * K + G)))
 
 
 def _energy(problem, result, bound):
@@ -31,10 +36,9 @@ def uniaxial_wave():
     motion."""
     name = "uniaxial-strain wave (piston 1 m/s, column 2 m of 200 elements, 300 us)"
     Kb, G, rho, v = 16e9, 14.86e9, 2440.0, 1.0
-    E, nu = 9 * Kb * G / (3 * Kb + G), (3 * Kb - 2 * G) / (2 * (3 * Kb + G))
     g = Grid.tensor(np.linspace(0, 0.05, 6), np.linspace(0, 2.0, 201))
-    m = Model(g, Elastic(rho, E, nu), Controls(lateral="roller", bottom="roller", end_time=3e-4, output_interval=1e-4,
-                                               progress=False))
+    m = Model(g, _elastic(rho, Kb, G), Controls(lateral="roller", bottom="roller", end_time=3e-4, output_interval=1e-4,
+                                                progress=False))
     m.prescribe(np.arange(g.nr + 1), 0.0, v)
     res = run(m)
     cL = math.sqrt((Kb + 4 * G / 3) / rho)
@@ -56,14 +60,13 @@ def blake_cavity():
     source = "ExactPack blake (closed form)"
     rho, lam, G = 3000.0, 25e9, 25e9
     Kb = lam + 2 * G / 3
-    E, nu = 9 * Kb * G / (3 * Kb + G), (3 * Kb - 2 * G) / (2 * (3 * Kb + G))
     a, nth = 0.1, 48
     radii = [a]
     while radii[-1] < 1.5:
         radii.append(radii[-1] + min(radii[-1] * np.pi / nth, 0.004))
     g = polar(np.array(radii), nth)
-    m = Model(g, Elastic(rho, E, nu), Controls(lateral="non_reflecting", end_time=400e-6, output_interval=4e-6,
-                                               progress=False))
+    m = Model(g, _elastic(rho, Kb, G), Controls(lateral="non_reflecting", end_time=400e-6, output_interval=4e-6,
+                                                progress=False))
     wall = np.arange(g.nz + 1) * (g.nr + 1)
     m.pressure(wall, 1e6)
     R0, Z0 = m.r.copy(), m.z.copy()
@@ -151,10 +154,7 @@ def taylor_bar(across=10):
 
 def all_checks(log=print):
     """Every problem (the Taylor bar at 10 and 20 elements across; the tests run it at 10)."""
-    checks = []
-    for problem, kw in ((uniaxial_wave, {}), (blake_cavity, {}), (driven_hjc_cavity, {}), (elastic_bar_rebound, {}),
-                        (taylor_bar, {"across": 10}), (taylor_bar, {"across": 20})):
-        checks += problem(**kw)
-        log(f"{checks[-1].problem}: {sum(c.holds for c in checks if c.problem == checks[-1].problem)} of "
-            f"{sum(c.problem == checks[-1].problem for c in checks)} checks hold")
-    return checks
+    return run_all([("uniaxial wave", uniaxial_wave), ("Blake's cavity", blake_cavity),
+                    ("driven HJC cavity", driven_hjc_cavity), ("elastic bar", elastic_bar_rebound),
+                    ("Taylor bar, 10 across", lambda: taylor_bar(10)), ("Taylor bar, 20 across", lambda: taylor_bar(20))],
+                   log)

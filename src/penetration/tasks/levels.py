@@ -125,12 +125,12 @@ def cell_deviation(table, reference, column, reference_column):
     nose), not by row position (the FE tables list the noses in another order than figures/table3.csv);
     every cell of either table must have its partner."""
     keys = ["velocity_ms", "nose"]
-    pair = table[keys + [column]].merge(reference[keys + [reference_column]], on=keys, how="outer",
-                                        suffixes=("", "_reference"), validate="one_to_one", indicator=True)
-    if (pair._merge != "both").any() or len(pair) != len(table):
+    pair = table[keys + [column]].rename(columns={column: "x"}).merge(
+        reference[keys + [reference_column]].rename(columns={reference_column: "x_reference"}), on=keys, how="outer",
+        validate="one_to_one", indicator=True)
+    if (pair._merge != "both").any():
         raise ValueError(f"Table 3 cells without a partner: {pair.loc[pair._merge != 'both', keys].to_dict('records')}")
-    ref = pair[reference_column + "_reference" if reference_column == column else reference_column]
-    return np.abs(pair[column].to_numpy() / ref.to_numpy() - 1)
+    return np.abs(pair.x.to_numpy() / pair.x_reference.to_numpy() - 1)
 
 
 @task
