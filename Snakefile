@@ -7,6 +7,8 @@
 # lists as code inputs every package module that module imports, so editing
 # a module re-runs exactly the rules whose tasks use it. Every rule declares
 # threads, resources (mem_mb, runtime in minutes) and a benchmark record.
+from pathlib import Path
+
 from penetration.config import check_config
 from penetration.pipeline import fe_scene_shots, load_studies, task
 
@@ -96,6 +98,7 @@ REPORT_INPUTS = [
     expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
     expand("figures/fe/{profile}/validation_levels.png", profile=FE_PROFILES),
     expand("figures/timing/validation_levels_{profile}.csv", profile=FE_PROFILES),
+    expand("figures/timing/fe_window_{profile}.csv", profile=FE_PROFILES),
     FE_CONVERGENCE,
 ]
 

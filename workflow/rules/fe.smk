@@ -294,3 +294,19 @@ rule fe_rear_face:
     benchmark: "results/benchmarks/fe_rear_face.tsv"
     log: "results/logs/fe_rear_face.log",
     script: "../scripts/run_task.py"
+
+
+rule fe_window_study:
+    input: **task("tasks.fe_window"), **GEOMETRY_RESULTS, reference=config["reference"],
+           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/do1.yaml", schema=SCENE_SCHEMA,
+    output: runs=fe_out("window.csv"), summary=fe_out("window_summary.csv"), timing="figures/timing/fe_window_{profile}.csv",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
+            velocity=lambda w: FE_SCENES["do1"][0][1], **config["fe_window"],
+    threads: 2
+    resources: mem_mb=2000, runtime=lambda w: 20 if w.profile == "ci" else 60
+    benchmark: "results/benchmarks/fe_window_study_{profile}.tsv"
+    log: "results/logs/fe_window_study_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+FE_OUTPUTS += ["window.csv", "window_summary.csv"]

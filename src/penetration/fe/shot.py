@@ -10,9 +10,8 @@ and depth 5.4 m with free faces.
 
 Moving window (``window_ahead``, ``window_tail``): only the rows from
 window_tail behind the projectile's tail to window_ahead ahead of its tip are
-computed; on the coarse DO1 mesh 1.5 m ahead and 0.5 m behind the tail gave
-the full domain's depth within 0.04 % (0.6 m behind the tip: +3 %, the
-material along the shank matters), at 0.4 of the cost.
+computed (the rule fe_window_study compares DO1 with the window and with the
+whole domain: figures/fe/{profile}/window_summary.csv).
 
 Deceleration: the contact impulses are summed in bins of ``bin_width`` and
 filtered by a zero-phase fourth-order Butterworth low-pass at ``cutoff``

@@ -1,0 +1,61 @@
+"""Where a rebuild's time goes: every job's recorded wall time (Snakemake's benchmark records), per rule and per stage.
+
+A job's record is the last run of that job (``results/benchmarks/``); a record is attributed to a rule only if
+its name matches that rule's benchmark pattern, so records left by renamed or removed rules are left out. The
+sums are of job wall times: with two jobs at a time, a rebuild takes less than their sum.
+"""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pandas as pd
+
+from ..io import task, write_csv
+
+
+def pattern_regex(pattern: str, profiles=()) -> re.Pattern:
+    """Regex of a benchmark path pattern: each {wildcard} a named group of at least one character, {profile} one of
+    ``profiles`` (other wildcards may hold underscores: a profile among them must be told apart)."""
+    parts = re.split(r"\{(\w+)(?:,[^}]*)?\}", pattern)
+    alt = "|".join(map(re.escape, profiles)) or ".+?"
+    rx = "".join(re.escape(p) if i % 2 == 0 else f"(?P<{p}>{alt if p == 'profile' else '.+?'})" for i, p in enumerate(parts))
+    return re.compile(rx + r"\Z")
+
+
+def attribute(paths, patterns: dict, profiles=()) -> list[dict]:
+    """(rule, wildcards) of each record path; the longest matching pattern wins (``fe_shot_...`` is not
+    ``fe_...``); a path no pattern matches is left out."""
+    compiled = sorted(((len(p), rule, pattern_regex(p, profiles)) for rule, p in patterns.items()), reverse=True)
+    out = []
+    for path in paths:
+        for _, rule, rx in compiled:
+            m = rx.match(str(path))
+            if m:
+                out.append({"path": str(path), "rule": rule, **{f"wc_{k}": v for k, v in m.groupdict().items()}})
+                break
+    return out
+
+
+@task
+def pipeline_timing(inputs, outputs, params):
+    """Per rule and per stage (rules file, and mesh profile where the rule has one): jobs and their wall times."""
+    patterns, files = dict(params.patterns), dict(params.rule_files)
+    rows = []
+    for rec in attribute(sorted(Path(params.folder).glob("*.tsv")), patterns, tuple(params.profiles)):
+        b = pd.read_csv(rec["path"], sep="\t")
+        stage = files[rec["rule"]] + (f" [{rec['wc_profile']}]" if rec.get("wc_profile") else "")
+        rows.append({"rule": rec["rule"], "stage": stage, "wall_s": float(b.s.iloc[0]), "max_rss_mb": float(b.max_rss.iloc[0])})
+    if not rows:
+        raise RuntimeError(f"no benchmark record under {params.folder} matches a rule's pattern")
+    jobs = pd.DataFrame(rows)
+    per_rule = (jobs.groupby(["stage", "rule"]).agg(jobs=("wall_s", "size"), wall_total_s=("wall_s", "sum"),
+                                                    wall_min_s=("wall_s", "min"), wall_max_s=("wall_s", "max"),
+                                                    max_rss_mb=("max_rss_mb", "max")).reset_index())
+    per_stage = (jobs.groupby("stage").agg(jobs=("wall_s", "size"), wall_total_s=("wall_s", "sum"),
+                                          max_rss_mb=("max_rss_mb", "max")).reset_index())
+    per_stage["wall_total_min"] = per_stage.wall_total_s / 60
+    write_csv(per_rule, outputs.rules)
+    write_csv(per_stage, outputs.stages)
+    for r in per_stage.itertuples():
+        print(f"{r.stage:28s} {r.jobs:4d} jobs {r.wall_total_min:7.1f} min", flush=True)
