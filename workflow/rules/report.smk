@@ -26,5 +26,6 @@ rule pipeline_timing:
             profiles=["full", "ci", *CONVERGENCE_PROFILES],
     threads: 1
     resources: mem_mb=500, runtime=2
+    benchmark: "results/benchmarks/pipeline_timing.tsv"
     log: "results/logs/pipeline_timing.log",
     script: "../scripts/run_task.py"
