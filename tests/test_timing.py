@@ -40,3 +40,42 @@ def test_sums_per_rule_and_stage(tmp_path):
     assert stages.loc["fe [full]", "wall_total_s"] == 40.0 and stages.loc["fe [full]", "jobs"] == 2
     assert stages.loc["fe [ci]", "wall_total_s"] == 2.0 and stages.loc["fe", "wall_total_s"] == 3.0
     assert stages.wall_total_s.sum() == 45.0   # the stale record is not counted
+
+
+def test_the_pipelines_own_patterns_attribute_sample_records():
+    """The rules' benchmark patterns as the .smk files declare them: records of overlapping names (scene and
+    scene_cavity, fe_shot and fe_ensemble_shot, a family with an underscore) go to the rule that wrote them."""
+    import re
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    text = "\n".join(p.read_text() for p in sorted((root / "workflow/rules").glob("*.smk")))
+    patterns = {}
+    for block in re.split(r"^rule ", text, flags=re.M)[1:]:
+        m = re.search(r'benchmark: "([^"]+)"', block)
+        if m:
+            patterns[block.split(":", 1)[0]] = m.group(1)
+    samples = {"scene_cavity_do1": "scene_cavity", "scene_do1": "scene", "fe_shot_full_table3_crh3_500": "fe_shot",
+               "fe_ensemble_shot_rear_face_full_do1_block_m3": "fe_ensemble_shot",
+               "fe_ensemble_shot_ensemble_fine_crh45_1200_m2": "fe_ensemble_shot",
+               "calibrate_fe_do1_finer_h0.00583333333333": "calibrate_fe_do1", "fe_table3_full": "fe_table3",
+               "fe_window_study_ci": "fe_window_study", "fe_rear_face": "fe_rear_face", "report": "report"}
+    got = attribute([f"results/benchmarks/{k}.tsv" for k in samples], patterns, PROFILES)
+    assert [g["rule"] for g in got] == list(samples.values())
+    assert got[3]["wc_family"] == "rear_face" and got[4]["wc_profile"] == "fine"
+
+
+def test_a_repeated_wildcard_must_match_the_same_text():
+    pats = {"twice": "b/x_{profile}_{a}_{a}.tsv"}
+    assert attribute(["b/x_ci_u_v_u_v.tsv"], pats, PROFILES)[0]["wc_a"] == "u_v"
+    assert attribute(["b/x_ci_u_w.tsv"], pats, PROFILES) == []
+
+
+def test_constraints_in_the_pattern_decide_as_snakemake_writes_them():
+    """Snakemake's patterns carry the wildcard constraints inline ({scene,[A-Za-z0-9_]+}); braces inside one count."""
+    pats = {"scene": "b/scene_{scene,[A-Za-z0-9_]+}.tsv", "scene_cavity": "b/scene_cavity_{scene,[a-z0-9]{3}}.tsv",
+            "fe_ensemble_shot": "b/fe_ensemble_shot_{family,ensemble|rear_face}_{profile,full|ci}_{shot}_m{member,\\d+}.tsv"}
+    got = attribute(["b/scene_cavity_do1.tsv", "b/scene_cavity_table3.tsv", "b/fe_ensemble_shot_rear_face_ci_do1_m7.tsv",
+                     "b/fe_ensemble_shot_rear_face_ci_do1_mx.tsv"], pats)
+    assert [(g["rule"], g.get("wc_scene"), g.get("wc_profile")) for g in got] == [
+        ("scene_cavity", "do1", None), ("scene", "cavity_table3", None), ("fe_ensemble_shot", None, "ci")]

@@ -16,7 +16,8 @@ rule report:
     script: "../scripts/run_task.py"
 
 
-# Every job's recorded wall time, per rule and per stage (after every other job of `all`: its records are final).
+# Every job's recorded wall time, per rule and per stage (after every job of `all` but the report, whose record and
+# this rule's own are those of their previous run).
 rule pipeline_timing:
     input: **task("tasks.timing"), outputs=REPORT_INPUTS,
     output: rules="figures/timing/pipeline_rules.csv", stages="figures/timing/pipeline_stages.csv",

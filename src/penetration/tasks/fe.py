@@ -77,7 +77,7 @@ def calibrate_fe_do1(inputs, outputs, params):
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
 
 
-def _scene_shot(inputs, params, velocity_factor=1.0):
+def scene_shot(inputs, params, velocity_factor=1.0):
     """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor); returns (summary, result,
     settings, scene)."""
     refs = reference.load_reference(inputs.reference)
@@ -113,7 +113,7 @@ def _scene_shot(inputs, params, velocity_factor=1.0):
 @task
 def fe_shot(inputs, outputs, params):
     """One nose at one velocity of an FE scene: depth, deceleration, audit, histories and the final fields."""
-    summary, r, settings, sc = _scene_shot(inputs, params)
+    summary, r, settings, sc = scene_shot(inputs, params)
     cfg = params.cfg
     h = r.histories
     # depth and velocity sampled on the deceleration bins (impulse-conserving bin sums of the contact force)
@@ -152,7 +152,7 @@ def fe_ensemble_shot(inputs, outputs, params):
         raise ValueError(f"fe_ensemble.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
                          "the chaos, not a change of the shot)")
     factor = 1.0 + member * step
-    summary, r, settings, sc = _scene_shot(inputs, params, factor)
+    summary, r, settings, sc = scene_shot(inputs, params, factor)
     write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
                 "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
 

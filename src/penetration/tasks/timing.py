@@ -1,8 +1,10 @@
 """Where a rebuild's time goes: every job's recorded wall time (Snakemake's benchmark records), per rule and per stage.
 
 A job's record is the last run of that job (``results/benchmarks/``); a record is attributed to a rule only if
-its name matches that rule's benchmark pattern, so records left by renamed or removed rules are left out. The
-sums are of job wall times: with two jobs at a time, a rebuild takes less than their sum.
+its name matches that rule's benchmark pattern, so records left by renamed or removed rules are left out (records
+of a current rule for wildcard values no longer built, such as a removed velocity, are not: they match). The
+records of the rules that run after this one (the report, this rule itself) are those of their previous run.
+The sums are of job wall times: with two jobs at a time, a rebuild takes less than their sum.
 """
 from __future__ import annotations
 
@@ -14,13 +16,46 @@ import pandas as pd
 from ..io import task, write_csv
 
 
+def _fields(pattern: str):
+    """Split a path pattern into (literal, name, constraint) triples: a {name} or {name,regex} wildcard after each
+    literal (name None after the last); braces inside a constraint (a{2}) are counted."""
+    out, lit, i = [], [], 0
+    while i < len(pattern):
+        if pattern[i] != "{":
+            lit.append(pattern[i])
+            i += 1
+            continue
+        depth, j = 1, i + 1
+        while depth and j < len(pattern):
+            depth += {"{": 1, "}": -1}.get(pattern[j], 0)
+            j += 1
+        if depth:
+            raise ValueError(f"path pattern {pattern!r}: unbalanced braces")
+        name, _, constraint = pattern[i + 1:j - 1].partition(",")
+        out.append(("".join(lit), name.strip(), constraint.strip() or None))
+        lit, i = [], j
+    out.append(("".join(lit), None, None))
+    return out
+
+
 def pattern_regex(pattern: str, profiles=()) -> re.Pattern:
-    """Regex of a benchmark path pattern: each {wildcard} a named group of at least one character, {profile} one of
-    ``profiles`` (other wildcards may hold underscores: a profile among them must be told apart)."""
-    parts = re.split(r"\{(\w+)(?:,[^}]*)?\}", pattern)
-    alt = "|".join(map(re.escape, profiles)) or ".+?"
-    rx = "".join(re.escape(p) if i % 2 == 0 else f"(?P<{p}>{alt if p == 'profile' else '.+?'})" for i, p in enumerate(parts))
-    return re.compile(rx + r"\Z")
+    """Regex of a benchmark path pattern as Snakemake holds it: each wildcard a named group matching its constraint
+    ({name,regex}: the rule's and the workflow's wildcard_constraints) or else at least one character, a repeated
+    one the same text; an unconstrained {profile} one of ``profiles`` (other wildcards may hold underscores: a
+    profile among them must be told apart)."""
+    rx, seen = [], set()
+    for literal, name, constraint in _fields(pattern):
+        rx.append(re.escape(literal))
+        if name is None:
+            continue
+        if name in seen:
+            rx.append(f"(?P={name})")
+            continue
+        seen.add(name)
+        if constraint is None:
+            constraint = "|".join(map(re.escape, profiles)) if name == "profile" and profiles else ".+?"
+        rx.append(f"(?P<{name}>(?:{constraint}))")
+    return re.compile("".join(rx) + r"\Z")
 
 
 def attribute(paths, patterns: dict, profiles=()) -> list[dict]:
