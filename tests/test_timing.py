@@ -3,15 +3,16 @@ import pandas as pd
 
 from penetration.tasks.timing import attribute, pipeline_timing
 
-PATTERNS = {"fe_shot": "b/fe_shot_{profile}_{scene}_{nose}_{velocity}.tsv",
-            "fe_ensemble_shot": "b/fe_ensemble_shot_{family}_{profile}_{shot}_m{member}.tsv",
-            "fe_rear_face": "b/fe_rear_face.tsv", "fe_table3": "b/fe_table3_{profile}.tsv"}
-PROFILES = ("full", "ci", "fine", "finer")
+# the profile as Snakemake writes the workflow's wildcard constraint into every pattern
+PROFILE = "{profile,full|ci|fine|finer}"
+PATTERNS = {"fe_shot": f"b/fe_shot_{PROFILE}_{{scene}}_{{nose}}_{{velocity}}.tsv",
+            "fe_ensemble_shot": f"b/fe_ensemble_shot_{{family}}_{PROFILE}_{{shot}}_m{{member}}.tsv",
+            "fe_rear_face": "b/fe_rear_face.tsv", "fe_table3": f"b/fe_table3_{PROFILE}.tsv"}
 
 
 def test_records_go_to_the_rule_and_profile_that_wrote_them():
     got = attribute(["b/fe_ensemble_shot_rear_face_full_do1_block_m3.tsv", "b/fe_shot_finer_table3_crh45_1200.tsv",
-                     "b/fe_rear_face.tsv", "b/fe_table3_fine.tsv"], PATTERNS, PROFILES)
+                     "b/fe_rear_face.tsv", "b/fe_table3_fine.tsv"], PATTERNS)
     assert [(g["rule"], g.get("wc_profile")) for g in got] == [("fe_ensemble_shot", "full"), ("fe_shot", "finer"),
                                                                ("fe_rear_face", None), ("fe_table3", "fine")]
     assert got[0]["wc_family"] == "rear_face" and got[0]["wc_shot"] == "do1_block" and got[0]["wc_member"] == "3"
@@ -20,7 +21,7 @@ def test_records_go_to_the_rule_and_profile_that_wrote_them():
 def test_records_of_no_current_rule_are_left_out():
     """A renamed rule's old records (fe_rear_face_shot_...) and a profile that is not configured match nothing."""
     assert attribute(["b/fe_rear_face_shot_full_do1_m1.tsv", "b/fe_table3_coarse.tsv", "b/other.tsv"],
-                     PATTERNS, PROFILES) == []
+                     PATTERNS) == []
 
 
 def test_sums_per_rule_and_stage(tmp_path):
@@ -34,7 +35,7 @@ def test_sums_per_rule_and_stage(tmp_path):
         __getattr__ = dict.__getitem__
 
     out = NS(rules=str(tmp_path / "rules.csv"), stages=str(tmp_path / "stages.csv"))
-    pipeline_timing(None, out, NS(folder=str(tmp_path), patterns=pats, profiles=list(PROFILES),
+    pipeline_timing(None, out, NS(folder=str(tmp_path), patterns=pats,
                                               rule_files={k: "fe" for k in PATTERNS}))
     stages = pd.read_csv(out.stages).set_index("stage")
     assert stages.loc["fe [full]", "wall_total_s"] == 40.0 and stages.loc["fe [full]", "jobs"] == 2
@@ -43,7 +44,8 @@ def test_sums_per_rule_and_stage(tmp_path):
 
 
 def test_the_pipelines_own_patterns_attribute_sample_records():
-    """The rules' benchmark patterns as the .smk files declare them: records of overlapping names (scene and
+    """The rules' benchmark patterns as the .smk files declare them (with the workflow's profile constraint, as
+    Snakemake writes it in): records of overlapping names (scene and
     scene_cavity, fe_shot and fe_ensemble_shot, a family with an underscore) go to the rule that wrote them."""
     import re
     from pathlib import Path
@@ -54,21 +56,21 @@ def test_the_pipelines_own_patterns_attribute_sample_records():
     for block in re.split(r"^rule ", text, flags=re.M)[1:]:
         m = re.search(r'benchmark: "([^"]+)"', block)
         if m:
-            patterns[block.split(":", 1)[0]] = m.group(1)
+            patterns[block.split(":", 1)[0]] = m.group(1).replace("{profile}", PROFILE)
     samples = {"scene_cavity_do1": "scene_cavity", "scene_do1": "scene", "fe_shot_full_table3_crh3_500": "fe_shot",
                "fe_ensemble_shot_rear_face_full_do1_block_m3": "fe_ensemble_shot",
                "fe_ensemble_shot_ensemble_fine_crh45_1200_m2": "fe_ensemble_shot",
                "calibrate_fe_do1_finer_h0.00583333333333": "calibrate_fe_do1", "fe_table3_full": "fe_table3",
                "fe_window_study_ci": "fe_window_study", "fe_rear_face": "fe_rear_face", "report": "report"}
-    got = attribute([f"results/benchmarks/{k}.tsv" for k in samples], patterns, PROFILES)
+    got = attribute([f"results/benchmarks/{k}.tsv" for k in samples], patterns)
     assert [g["rule"] for g in got] == list(samples.values())
     assert got[3]["wc_family"] == "rear_face" and got[4]["wc_profile"] == "fine"
 
 
 def test_a_repeated_wildcard_must_match_the_same_text():
-    pats = {"twice": "b/x_{profile}_{a}_{a}.tsv"}
-    assert attribute(["b/x_ci_u_v_u_v.tsv"], pats, PROFILES)[0]["wc_a"] == "u_v"
-    assert attribute(["b/x_ci_u_w.tsv"], pats, PROFILES) == []
+    pats = {"twice": f"b/x_{PROFILE}_{{a}}_{{a}}.tsv"}
+    assert attribute(["b/x_ci_u_v_u_v.tsv"], pats)[0]["wc_a"] == "u_v"
+    assert attribute(["b/x_ci_u_w.tsv"], pats) == []
 
 
 def test_constraints_in_the_pattern_decide_as_snakemake_writes_them():
@@ -79,3 +81,8 @@ def test_constraints_in_the_pattern_decide_as_snakemake_writes_them():
                      "b/fe_ensemble_shot_rear_face_ci_do1_mx.tsv"], pats)
     assert [(g["rule"], g.get("wc_scene"), g.get("wc_profile")) for g in got] == [
         ("scene_cavity", "do1", None), ("scene", "cavity_table3", None), ("fe_ensemble_shot", None, "ci")]
+
+
+def test_the_pattern_with_more_literal_text_wins_whatever_its_constraints_length():
+    pats = {"fe": "b/fe_{x,a_very_long_alternative_of_a_constraint|shot_z}.tsv", "fe_shot": "b/fe_shot_{y}.tsv"}
+    assert [g["rule"] for g in attribute(["b/fe_shot_z.tsv"], pats)] == ["fe_shot"]

@@ -24,7 +24,6 @@ rule pipeline_timing:
     params: folder="results/benchmarks",
             patterns=lambda w: {r.name: str(r.benchmark) for r in workflow.rules if r.benchmark},
             rule_files=lambda w: {r.name: Path(r.snakefile).stem for r in workflow.rules},
-            profiles=["full", "ci", *CONVERGENCE_PROFILES],
     threads: 1
     resources: mem_mb=500, runtime=2
     benchmark: "results/benchmarks/pipeline_timing.tsv"

@@ -59,8 +59,9 @@ def fe_window_study(inputs, outputs, params):
         shot = SimpleNamespace(cfg=cfg, hjc=params.hjc, profile=params.profile, nose="double_ogive", velocity=params.velocity)
         for k in range(members):
             print(f"window study: {domain} domain, realisation {k + 1} of {members}", flush=True)
-            summary, r, _, _ = scene_shot(inputs, shot, 1.0 + k * step)
-            rows.append({"domain": domain, "member": k, "striking_velocity_ms": summary["velocity"] * (1.0 + k * step),
+            factor = 1.0 + k * step
+            summary, r, _, _ = scene_shot(inputs, shot, factor)
+            rows.append({"domain": domain, "member": k, "striking_velocity_ms": summary["velocity"] * factor,
                          "depth_m": r.depth, "status": r.status, "time_to_rest_s": r.time,
                          "steps": r.steps, "mesh_elements": r.elements,
                          "failure_strain": summary["failure_strain"], "element_size_m": summary["element_size"]})

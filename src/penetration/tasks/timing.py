@@ -38,11 +38,10 @@ def _fields(pattern: str):
     return out
 
 
-def pattern_regex(pattern: str, profiles=()) -> re.Pattern:
+def pattern_regex(pattern: str) -> re.Pattern:
     """Regex of a benchmark path pattern as Snakemake holds it: each wildcard a named group matching its constraint
-    ({name,regex}: the rule's and the workflow's wildcard_constraints) or else at least one character, a repeated
-    one the same text; an unconstrained {profile} one of ``profiles`` (other wildcards may hold underscores: a
-    profile among them must be told apart)."""
+    ({name,regex}: the rule's and the workflow's wildcard_constraints, which Snakemake writes into the pattern) or
+    else at least one character; a repeated one the same text."""
     rx, seen = [], set()
     for literal, name, constraint in _fields(pattern):
         rx.append(re.escape(literal))
@@ -52,16 +51,15 @@ def pattern_regex(pattern: str, profiles=()) -> re.Pattern:
             rx.append(f"(?P={name})")
             continue
         seen.add(name)
-        if constraint is None:
-            constraint = "|".join(map(re.escape, profiles)) if name == "profile" and profiles else ".+?"
-        rx.append(f"(?P<{name}>(?:{constraint}))")
+        rx.append(f"(?P<{name}>(?:{constraint or '.+?'}))")
     return re.compile("".join(rx) + r"\Z")
 
 
-def attribute(paths, patterns: dict, profiles=()) -> list[dict]:
-    """(rule, wildcards) of each record path; the longest matching pattern wins (``fe_shot_...`` is not
-    ``fe_...``); a path no pattern matches is left out."""
-    compiled = sorted(((len(p), rule, pattern_regex(p, profiles)) for rule, p in patterns.items()), reverse=True)
+def attribute(paths, patterns: dict) -> list[dict]:
+    """(rule, wildcards) of each record path; the pattern with the most literal characters wins (``fe_shot_...``
+    is not ``fe_...``; a constraint's length does not count); a path no pattern matches is left out."""
+    compiled = sorted(((sum(len(lit) for lit, _, _ in _fields(p)), rule, pattern_regex(p)) for rule, p in patterns.items()),
+                      reverse=True)
     out = []
     for path in paths:
         for _, rule, rx in compiled:
@@ -77,7 +75,7 @@ def pipeline_timing(inputs, outputs, params):
     """Per rule and per stage (rules file, and mesh profile where the rule has one): jobs and their wall times."""
     patterns, files = dict(params.patterns), dict(params.rule_files)
     rows = []
-    for rec in attribute(sorted(Path(params.folder).glob("*.tsv")), patterns, tuple(params.profiles)):
+    for rec in attribute(sorted(Path(params.folder).glob("*.tsv")), patterns):
         b = pd.read_csv(rec["path"], sep="\t")
         stage = files[rec["rule"]] + (f" [{rec['wc_profile']}]" if rec.get("wc_profile") else "")
         rows.append({"rule": rec["rule"], "stage": stage, "wall_s": float(b.s.iloc[0]), "max_rss_mb": float(b.max_rss.iloc[0])})
