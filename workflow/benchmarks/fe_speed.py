@@ -9,11 +9,14 @@ explicit step (node pass, move, element pass; no contact) on a DO1-like HJC
 target in motion, as a ratio to the floor, each the best of --repeat batches
 of --steps steps (noise on a shared host only adds time; the states that
 evolve start every batch from the same state), and how that step divides
-between its three passes. The same elastic state on a mesh 16 times as deep
+between its three passes. The same elastic state on a mesh deep enough that one
+step moves at least twice the last-level cache (16 times the benchmark mesh's
+depth or more; the cache size as the kernel reports it, /sys/devices/system/cpu)
 shows what moving the arrays from memory rather than from the cache costs.
 Optionally (--do1) the wall time of the pipeline's DO1 shot (its mesh and
-calibrated failure strain, from results/fe/full/do1/; the depth is checked
-against the pipeline's bit for bit), and the time per
+calibrated failure strain, from results/fe/full/do1/, which
+`snakemake -c2 results/fe/full/do1/double_ogive_835.json` builds; the depth is
+checked against the pipeline's bit for bit), and the time per
 element-step in the state of that shot at 6 ms (the window around the
 nose: crushed, damaged, yielding and elastic elements as they come).
 
@@ -23,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import time
 from pathlib import Path
 
@@ -35,6 +39,8 @@ from penetration.fe import kernels as K
 from penetration.fe.mesh import MeshSpec, build
 from penetration.fe.solver import Controls, Model
 from penetration.hjc import HJC
+
+DO1 = "results/fe/full/do1/double_ogive_835.json"
 
 
 @njit(parallel=True, cache=True)
@@ -91,6 +97,28 @@ def _best_split(passes, steps, repeat, restore=None):
 def _best(step, steps, repeat, restore=None):
     """Seconds per step of `step`, the best of `repeat` batches of `steps` steps (each from restore()'s state)."""
     return _best_split((step,), steps, repeat, restore)[0]
+
+
+def last_level_cache():
+    """Size in bytes of the largest cache of cpu0 as the kernel reports it, or None."""
+    sizes = []
+    for f in Path("/sys/devices/system/cpu/cpu0/cache").glob("index*/size"):
+        text = f.read_text().strip()
+        unit = {"K": 2**10, "M": 2**20, "G": 2**30}.get(text[-1:], 1)
+        try:
+            sizes.append(int(text.rstrip("KMG")) * unit)
+        except ValueError:
+            pass
+    return max(sizes) if sizes else None
+
+
+def vector_isa():
+    """The widest x86 vector extension /proc/cpuinfo lists (numba's LLVM targets the host), or 'unknown'."""
+    try:
+        flags = next(line for line in Path("/proc/cpuinfo").read_text().splitlines() if line.startswith("flags")).split()
+    except (OSError, StopIteration):
+        return "unknown"
+    return next((isa for isa in ("avx512f", "avx2", "avx", "sse4_2") if isa in flags), "unknown")
 
 
 def step_bytes(m: Model):
@@ -173,7 +201,12 @@ def main():
     ap.add_argument("--do1", action="store_true", help="also time the DO1 shot at the default mesh (needs results/fe/full)")
     args = ap.parse_args()
     numba.set_num_threads(args.threads)
-    print(f"machine: {machine()}, numba {numba.__version__}, threads {numba.get_num_threads()}")
+    llc = last_level_cache()
+    print(f"machine: {machine()}, {vector_isa()}, last-level cache "
+          f"{'unknown' if llc is None else f'{llc / 2**20:.0f} MiB'}, numba {numba.__version__}, threads {numba.get_num_threads()}")
+    if args.do1 and not Path(DO1).exists():
+        raise SystemExit(f"--do1 times the pipeline's DO1 shot and needs {DO1}: "
+                         f"run `snakemake -c2 {DO1}` first (its failure-strain calibration takes a few minutes)")
     bw0 = stream_triad()
     print(f"STREAM triad: {bw0 / 1e9:.1f} GB/s (measured again at the end)")
     # a DO1-like target (the core and graded far field of the default mesh, 2.5 m deep) in motion
@@ -224,11 +257,14 @@ def main():
         live = float((m.alive == 1).mean())
         print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step; "
               f"node pass {split[0] * 1e9:.1f}, move {split[1] * 1e9:.1f}, element pass {split[2] * 1e9:.1f} ns")
-    # cache or memory? The arrays of the benchmark mesh (and of the DO1 window) fit in a 32 MiB L3 cache; the same
-    # elastic state over the same columns 16 times as deep moves them from and to memory every step
-    deep, nd, bd = _elastic_time(MeshSpec(args.size, 0.21, 40.0, 1.2, 40.0, 1.1), args.repeat)
-    times["elastic, 16 times as deep"] = deep
-    print(f"elastic, a mesh 16 times as deep ({nd} elements, {bd / 2**20:.0f} MiB moved per step): {deep * 1e9:.1f} ns per "
+    # cache or memory? The arrays of the benchmark mesh (and of the DO1 window) fit in the last-level cache of the
+    # hosts seen; the same elastic state over the same columns made deep enough to move at least twice that cache
+    # (16 times as deep or more) moves them from and to memory every step
+    deeper = max(16, math.ceil(2 * (llc or 0) / bytes_total))
+    deep, nd, bd = _elastic_time(MeshSpec(args.size, 0.21, 2.5 * deeper, 1.2, 2.5 * deeper, 1.1), args.repeat)
+    label = f"elastic, {deeper} times as deep"
+    times[label] = deep
+    print(f"{label} ({nd} elements, {bd / 2**20:.0f} MiB moved per step): {deep * 1e9:.1f} ns per "
           f"element-step, {deep / times['elastic']:.2f} x the benchmark mesh's ({bytes_total / 2**20:.0f} MiB)")
     if args.do1:
         from penetration.fe import shot as fe_shot
@@ -236,7 +272,7 @@ def main():
         from penetration.fe_level import with_failure_strain
         from penetration.io import read_inference
         # the pipeline's DO1 shot (its element size, calibrated failure strain and mesh extent)
-        ref = json.loads(Path("results/fe/full/do1/double_ogive_835.json").read_text())
+        ref = json.loads(Path(DO1).read_text())
         nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]
         # the DO1 state: at t = 6 ms of the shot, one full step (node pass, move, element pass over the window's
         # rows; no contact) timed on a copy of the model, per element of the window
