@@ -323,7 +323,10 @@ def integrate(assembly: Assembly, mass, vs, rtol=1e-8, samples=200, method="DOP8
         pieces.append((ts, ys))
         state, t0 = sol.y[:, -1].copy(), t1
         if sol.status == 1 and sol.t_events[0].size:
+            # the rest event: the velocity is zero there by definition (the dense output at the event's time
+            # leaves a round-off residue of either sign, 1e-14 m/s, that differs between hosts)
             state[1] = 0.0
+            ys[1, -1] = 0.0
             break
         if sol.status == 0:
             raise RuntimeError(f"projectile still moving after {t_max} s (v = {state[1]:.3g} m/s)")
