@@ -9,6 +9,16 @@ where (rtol, atol, scale) is what the producer of the column guarantees
 compares orders of magnitude instead (error estimates of accuracy studies):
 |log10((|now| + F atol)/(|committed| + F atol))| <= F decades, F the factor.
 Text columns must match.
+
+A file's spec may also give, for outputs of the chaotic finite-element level:
+``rows``, classes for the cells of the rows whose committed values match
+(``{where: {column: value}, columns: {column: class}}``); ``verdicts``, boolean
+columns that state whether a compared value met a goal, checked against the
+values now in the file rather than against the committed booleans (a value
+within its tolerance of the goal's edge may cross it); and ``ensembles``,
+means of realisations compared by their standard errors:
+|now - committed| <= sigmas x sqrt(std_now^2 / n_now + std_committed^2 / n_committed)
+plus the class tolerance.
 """
 from __future__ import annotations
 
@@ -113,39 +123,95 @@ def column_tolerances(spec, precision, factor, columns):
     return {c: tuple(factor * precision[n].get(k, 0.0) for k in keys) for c, n in named.items()}
 
 
-def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances):
-    """Reason why two CSV tables differ beyond the per-column tolerances, or None."""
+def cell_tolerances(spec, precision, factor, committed: pd.DataFrame):
+    """column_tolerances, with the classes of ``spec["rows"]`` in the rows whose committed values match: column ->
+    (rtol, atol, scale, decades), each an array over the rows."""
+    cols = column_tolerances(spec, precision, factor, committed.columns)
+    n = len(committed)
+    out = {c: tuple(np.full(n, v) for v in t) for c, t in cols.items()}
+    for rule in (spec.get("rows", []) if isinstance(spec, dict) else []):
+        where = rule["where"]
+        stray = sorted((set(where) | set(rule["columns"])) - set(committed.columns))
+        if stray:
+            raise KeyError(f"check.outputs rows name columns {stray} that the file lacks; its columns: {list(committed.columns)}")
+        hit = np.ones(n, bool)
+        for col, value in where.items():
+            hit &= (committed[col].astype(float).to_numpy() == float(value)) if pd.api.types.is_numeric_dtype(committed[col]) \
+                else (committed[col].astype(str).to_numpy() == str(value))
+        for col, t in column_tolerances({"default": next(iter(rule["columns"].values())), "columns": rule["columns"]},
+                                        precision, factor, list(rule["columns"])).items():
+            for arr, v in zip(out[col], t):
+                arr[hit] = v
+    return out
+
+
+def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances, verdicts=None, ensembles=None, sigmas=4.0):
+    """Reason why two CSV tables differ beyond the per-column tolerances (the first such cell of every column that
+    has one), or None. ``tolerances``: column -> (rtol, atol, scale, decades), scalars or arrays over the rows;
+    ``verdicts``: boolean column -> {"of": [columns], "abs_at_most": number or column} (true where every |value| is
+    at most the bound) or {"of": column, "between": [low column, high column]}, checked on the new frame;
+    ``ensembles``: mean column -> {"std": column, "n": column}, the mean's allowed gap widened by ``sigmas`` standard
+    errors of the difference of the two means."""
     if list(new.columns) != list(old.columns):
         return f"columns changed: {list(old.columns)} -> {list(new.columns)}"
     if len(new) != len(old):
         return f"row count changed: {len(old)} -> {len(new)}"
+    verdicts, ensembles = verdicts or {}, ensembles or {}
+    stray = sorted((set(verdicts) | set(ensembles)) - set(new.columns))
+    if stray:
+        raise KeyError(f"check.outputs verdicts or ensembles name columns {stray} that the file lacks")
+    reasons = []
     for col in new.columns:
         a, b = new[col], old[col]
-        if pd.api.types.is_numeric_dtype(a) and pd.api.types.is_numeric_dtype(b):
+        if col in verdicts:
+            want = _verdict(new, verdicts[col])
+            got = a.astype(str).str.lower().to_numpy() == "true"
+            if (got != want).any():
+                i = int(np.argmax(got != want))
+                reasons.append(f"column {col} row {i + 2}: says {a.iloc[i]!r}, but its values now give {bool(want[i])}")
+        elif pd.api.types.is_numeric_dtype(a) and pd.api.types.is_numeric_dtype(b):
             rtol, atol, scale, decades = tolerances[col]
             x, y = a.to_numpy(float), b.to_numpy(float)
             with np.errstate(invalid="ignore", divide="ignore"):
                 gap, allowed, what = _gap(x, y, rtol, atol, scale, decades)
+                if col in ensembles:
+                    e = ensembles[col]
+                    se = np.sqrt(new[e["std"]].to_numpy(float) ** 2 / new[e["n"]].to_numpy(float)
+                                 + old[e["std"]].to_numpy(float) ** 2 / old[e["n"]].to_numpy(float))
+                    allowed = allowed + sigmas * np.nan_to_num(se)
             # a committed inf or nan must come back as it was
             same = np.where(np.isfinite(y), (gap <= allowed) | (x == y), (x == y) | (np.isnan(x) & np.isnan(y)))
             if not same.all():
                 i = int(np.argmax(~same))
-                return (f"column {col} row {i + 2}: committed {y[i]!r}, now {x[i]!r} "
-                        f"({what} {gap[i]:.3g} > allowed {allowed[i]:.3g})")
+                reasons.append(f"column {col} row {i + 2}: committed {y[i]!r}, now {x[i]!r} "
+                               f"({what[i]} {gap[i]:.3g} > allowed {allowed[i]:.3g})")
         elif not a.astype(str).equals(b.astype(str)):
             i = int(np.argmax((a.astype(str) != b.astype(str)).to_numpy()))
-            return f"column {col} row {i + 2}: committed {b.iloc[i]!r}, now {a.iloc[i]!r}"
-    return None
+            reasons.append(f"column {col} row {i + 2}: committed {b.iloc[i]!r}, now {a.iloc[i]!r}")
+    return "; ".join(reasons) or None
+
+
+def _verdict(frame, rule):
+    """The booleans a verdict rule gives on ``frame`` (see frames_differ)."""
+    if "between" in rule:
+        lo, hi = (frame[c].to_numpy(float) for c in rule["between"])
+        v = frame[rule["of"]].to_numpy(float)
+        return (lo <= v) & (v <= hi)
+    bound = rule["abs_at_most"]
+    bound = frame[bound].to_numpy(float) if isinstance(bound, str) else float(bound)
+    return np.all([np.abs(frame[c].to_numpy(float)) <= bound for c in rule["of"]], axis=0)
 
 
 def _gap(x, y, rtol, atol, scale, decades):
-    """(gap, allowed gap, what the gap measures) between new values x and committed y."""
-    if decades:
-        gap = np.abs(np.log10((np.abs(x) + atol) / (np.abs(y) + atol)))
-        return gap, np.full_like(y, decades), "decades apart"
+    """(gap, allowed gap, what each gap measures) between new values x and committed y; the tolerances are scalars or
+    arrays over the rows (a row with decades compares orders of magnitude)."""
+    rtol, atol, scale, decades = (np.broadcast_to(np.asarray(t, float), y.shape) for t in (rtol, atol, scale, decades))
     finite = np.isfinite(y)
     big = float(np.max(np.abs(y[finite]))) if finite.any() else 0.0
-    return np.abs(x - y), atol + rtol * np.abs(y) + scale * big, "|difference|"
+    log = decades > 0
+    gap = np.where(log, np.abs(np.log10((np.abs(x) + atol) / (np.abs(y) + atol))), np.abs(x - y))
+    allowed = np.where(log, decades, atol + rtol * np.abs(y) + scale * big)
+    return gap, allowed, np.where(log, "decades apart", "|difference|")
 
 
 def _committed(path):
@@ -170,8 +236,11 @@ def reproduction_problems(outputs, diff_path, check):
             continue
         compared += 1
         new, old = pd.read_csv(path), pd.read_csv(stdio.StringIO(text))
-        tol = column_tolerances(check["outputs"][path], check["precision"], check["factor"], new.columns)
-        why = frames_differ(new, old, tol)
+        spec = check["outputs"][path]
+        extra = spec if isinstance(spec, dict) else {}
+        tol = cell_tolerances(spec, check["precision"], check["factor"], old) if list(old.columns) == list(new.columns) \
+            else column_tolerances(spec, check["precision"], check["factor"], new.columns)
+        why = frames_differ(new, old, tol, extra.get("verdicts"), extra.get("ensembles"), check.get("sigmas", 4.0))
         if why:
             problems.append(f"{path}: no longer matches the committed file: {why}")
     old = _committed(diff_path)
