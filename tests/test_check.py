@@ -5,7 +5,7 @@ import subprocess
 import pandas as pd
 import pytest
 
-from penetration.tasks.reference import cell_tolerances, column_tolerances, frames_differ, reproduction_problems
+from penetration.tasks.reference import cell_tolerances, column_tolerances, compare, frames_differ, reproduction_problems
 
 HEAD = "item,quantity,case,paper,ours,rel_err,tol,status\n"
 CHECK = {"factor": 10.0,
@@ -193,10 +193,7 @@ def test_the_fe_classes_hold_the_difference_of_two_builds():
     moved = 0
     for path in files:
         new, old = pd.read_csv(record / path), pd.read_csv(root / path)
-        spec = specs[path]
-        extra = spec if isinstance(spec, dict) else {}
-        tol = cell_tolerances(spec, check["precision"], check["factor"], old)
-        assert frames_differ(new, old, tol, extra.get("verdicts"), extra.get("ensembles"), check["sigmas"]) is None, path
+        assert compare(new, old, specs[path], check) is None, path
         moved += not new.equals(old)
     # the record is a different build, not a copy: most FE files moved (fig13, the meshes, and the analytic,
     # trajectory and cavity rows are the same)

@@ -191,6 +191,17 @@ def frames_differ(new: pd.DataFrame, old: pd.DataFrame, tolerances, verdicts=Non
     return "; ".join(reasons) or None
 
 
+def compare(new: pd.DataFrame, old: pd.DataFrame, spec, check):
+    """frames_differ under one file's spec in ``check.outputs`` (its classes, rows, verdicts and ensembles) and the
+    check section's precision classes, factor and sigmas."""
+    if list(new.columns) != list(old.columns) or len(new) != len(old):
+        tol = {}  # frames_differ reports the changed shape before it looks at a tolerance
+    else:
+        tol = cell_tolerances(spec, check["precision"], check["factor"], old)
+    extra = spec if isinstance(spec, dict) else {}
+    return frames_differ(new, old, tol, extra.get("verdicts"), extra.get("ensembles"), check.get("sigmas", 4.0))
+
+
 def _verdict(frame, rule):
     """The booleans a verdict rule gives on ``frame`` (see frames_differ)."""
     if "between" in rule:
@@ -236,11 +247,7 @@ def reproduction_problems(outputs, diff_path, check):
             continue
         compared += 1
         new, old = pd.read_csv(path), pd.read_csv(stdio.StringIO(text))
-        spec = check["outputs"][path]
-        extra = spec if isinstance(spec, dict) else {}
-        tol = cell_tolerances(spec, check["precision"], check["factor"], old) if list(old.columns) == list(new.columns) \
-            else column_tolerances(spec, check["precision"], check["factor"], new.columns)
-        why = frames_differ(new, old, tol, extra.get("verdicts"), extra.get("ensembles"), check.get("sigmas", 4.0))
+        why = compare(new, old, check["outputs"][path], check)
         if why:
             problems.append(f"{path}: no longer matches the committed file: {why}")
     old = _committed(diff_path)
