@@ -330,3 +330,16 @@ def test_a_check_row_carries_its_deviation_and_verdict():
     assert list(c.row()) == ["problem", "quantity", "ours", "reference", "rel_dev", "low", "high", "unit", "source", "holds"]
     b = below("p", "q", 0.5, 1.0, "1", "s")
     assert b.holds and math.isnan(b.rel_dev) and b.row()["holds"] is True
+
+
+def test_body_outline_does_not_follow_round_off_in_the_nose():
+    """numpy's vector maths differ in the last bit between CPUs; the rigid body the erosion sees must not."""
+    from types import SimpleNamespace
+    from penetration.geometry import MinimumNstar
+    nose = MinimumNstar(0.07, Ogive(4.5, 0.07).length)
+    x, y = nose.outline(400)
+    jittered = SimpleNamespace(length=nose.length, radius=nose.radius,
+                               outline=lambda n: (x * (1 + 4e-16), y * (1 - 4e-16)))
+    assert not np.array_equal(jittered.outline(400)[0], x)
+    for a, b in zip(body_outline(nose, 1.13), body_outline(jittered, 1.13)):
+        assert np.array_equal(a, b)

@@ -75,3 +75,34 @@ def test_fig4_design_is_interior_minimum_below_ogives():
 def test_banded_construction_rejects_unreachable_tip():
     with pytest.raises(InferenceError, match="tip"):
         banded_double_ogive(1.0, 3.0, Ogive(5, 1.0).length, 0.088, 0.383, 0.2)
+
+
+def test_table4_nose_does_not_follow_round_off_in_the_solver(table4, monkeypatch):
+    """A CPU's BLAS kernels move the least-squares root in its last bits: the chosen nose must not move."""
+    import penetration.inference as inference
+    real = inference.least_squares
+
+    def jittered(*args, **kwargs):
+        r = real(*args, **kwargs)
+        r.x = r.x * (1.0 + 6e-16)
+        return r
+
+    monkeypatch.setattr(inference, "least_squares", jittered)
+    moved = infer_table4(Table4Rule(radius=0.07, density=7850.0, psi_base=3.0, psi_length=4.5,
+                                    nstar_target=0.0608, mass_target=16.44))
+    assert moved["roots"][0] != table4["roots"][0]
+    a, b = table4["nose"], moved["nose"]
+    assert (a.S1, a.S2, a.a1, a.a2, a.alpha) == (b.S1, b.S2, b.a1, b.a2, b.alpha)
+    assert max(abs(v) for v in moved["residual"].values()) < 1e-11
+
+
+def test_fig4_nose_does_not_follow_round_off_in_its_band_or_minimiser(monkeypatch):
+    """The band's crossings (roots) and the least-N* member (a flat minimum, found to ~1e-8) differ in their
+    last digits between CPUs: the chosen nose must not."""
+    import penetration.inference as inference
+    base = infer_fig4(Fig4Rule())["nose"]
+    band, golden = inference.k_band, inference._golden_min
+    monkeypatch.setattr(inference, "k_band", lambda *a: (lambda lo, hi, x, k: (lo * (1 + 6e-16), hi * (1 - 6e-16), x, k))(*band(*a)))
+    monkeypatch.setattr(inference, "_golden_min", lambda f, a, b: golden(f, a, b) + 4e-9)
+    moved = infer_fig4(Fig4Rule())["nose"]
+    assert (base.S1, base.a1, base.a2, base.alpha) == (moved.S1, moved.a1, moved.a2, moved.alpha)

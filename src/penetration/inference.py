@@ -25,6 +25,11 @@ from scipy.optimize import brentq, least_squares
 from .geometry import DoubleOgive, Ogive, ParameterError
 from .nstar import nstar, shape_rate
 
+# Decimals an inferred nose parameter is rounded to: well above round-off, so that the BLAS kernels and vector
+# maths of the CPU do not choose the nose (a root of well-posed equations; a minimiser of a flat minimum).
+ROOT_DIGITS = 12
+MINIMISER_DIGITS = 6
+
 # How the paper's Fig 3b "k" may be normalised: factor turning dN*/dx (1/m)
 # into the plotted number, given the nose.
 K_CONVENTIONS = {
@@ -90,7 +95,8 @@ def banded_double_ogive(radius, psi_base, length, xi_c, xi_d, a1):
         raise InferenceError(f"length {length} is shorter than the base ogive {base.length}")
     xD = shift + xi_d * base.length
     xC = shift + xi_c * base.length
-    yD = float(base.y(np.array([xi_d * base.length]))[0])
+    # the base ogive's radius at D in scalar maths (the same on every CPU, unlike numpy's vector arccos)
+    yD = radius - base.S + math.sqrt(base.S ** 2 - ((1.0 - xi_d) * base.length) ** 2)
     if not (0 < xC < xD and 0 < a1 < yD):
         raise InferenceError(f"need 0 < x_C < x_D and 0 < a1 < a2: x_C={xC:.4g}, x_D={xD:.4g}, a1={a1:.4g}, a2={yD:.4g}")
     alpha = math.atan((yD - a1) / (xD - xC))
@@ -150,6 +156,7 @@ def infer_fig4(rule: Fig4Rule):
     lo, hi, xpk, kpk = k_band(base, rule.threshold, rule.convention)
     if lo is None:
         raise InferenceError(f"k never exceeds {rule.threshold} under convention {rule.convention}")
+    lo, hi = round(lo, ROOT_DIGITS), round(hi, ROOT_DIGITS)   # threshold crossings: roots, see ROOT_DIGITS
     a2 = float(base.y(np.array([hi * base.length]))[0])
     family = []
     for a1 in np.linspace(0.0, a2, rule.family_points)[1:-1]:
@@ -165,7 +172,9 @@ def infer_fig4(rule: Fig4Rule):
     if i in (0, len(family) - 1):
         raise InferenceError("least N* lies at the edge of the family: no interior minimum")
     f = lambda a1: nstar(banded_double_ogive(1.0, rule.psi_base, length, lo, hi, a1))
-    a1_best = _golden_min(f, family[i - 1]["a1"], family[i + 1]["a1"])
+    # N* is flat at its minimum: the minimiser is found only to ~1e-8, and its last digits differ between CPUs
+    # (numpy's vector maths); it is quantised to MINIMISER_DIGITS decimals (N* changes by ~1e-13 or less)
+    a1_best = round(_golden_min(f, family[i - 1]["a1"], family[i + 1]["a1"]), MINIMISER_DIGITS)
     chosen = banded_double_ogive(1.0, rule.psi_base, length, lo, hi, a1_best)
     return {
         "rule": "fig4_design",
@@ -179,7 +188,7 @@ def infer_fig4(rule: Fig4Rule):
             f"nose length of CRH {rule.psi_length} (Fig 4: tip A is the CRH {rule.psi_length} tip; Fig 7: head length similar to CRH 5)",
             f"cone from C to D over the band where k > {rule.threshold}, k read as '{rule.convention}' (Fig 3b finding)",
             "tip ogive through the tip and tangent to the cone at C; corner at D",
-            "a1 chosen for least N*",
+            f"a1 chosen for least N*, rounded to {MINIMISER_DIGITS} decimals of the shank radius (a flat minimum)",
         ],
     }
 
@@ -242,13 +251,17 @@ def infer_table4(rule: Table4Rule):
     if not roots:
         raise InferenceError("no double ogive of the assumed construction meets Table 4's N*, mass and middle length")
     roots.sort(key=lambda q: q[1])
-    xi_c, xi_d, a1n = roots[0]
+    # the least-squares root is the same to round-off on every machine, but its last bits depend on the BLAS
+    # kernels of the CPU (OpenBLAS's AVX-512 and AVX2 ones differ in the 16th digit), and the FE level's erosion
+    # amplifies any difference in the nose: the root is quantised to ROOT_DIGITS decimals, far above round-off
+    xi_c, xi_d, a1n = (round(float(v), ROOT_DIGITS) for v in roots[0])
     chosen = banded_double_ogive(rule.radius, rule.psi_base, length, xi_c, xi_d, a1n * rule.radius)
     family = _trace_table4_family(rule, length, shift_frac, (xi_c, a1n), xi_d)
     return {
         "rule": "table4_do1",
         "nose": chosen,
         "solution": {"xi_c": xi_c, "xi_d": xi_d, "a1_over_radius": a1n},
+        "quantum": 10.0 ** -ROOT_DIGITS,
         "roots": [list(map(float, q)) for q in roots],
         "unique": len(roots) == 1,
         "residual": {"nstar": nstar(chosen) / rule.nstar_target - 1.0,
@@ -265,6 +278,7 @@ def infer_table4(rule: Table4Rule):
             f"targets N* = {rule.nstar_target}, nose mass = {rule.mass_target} kg (Table 4)",
             "tip ogive tangent to the cone at C; corner at D",
             f"region 2 = {rule.middle_fraction:.4g} of the nose length (the paper's upper bound) selects one member",
+            f"the root rounded to {ROOT_DIGITS} decimals, so that no CPU's round-off chooses the nose",
         ],
     }
 

@@ -146,16 +146,22 @@ def build(spec: MeshSpec) -> Grid:
                 graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
 
 
+# Decimals of a metre the rigid body's outline is rounded to (1 pm): far below any length of the model.
+OUTLINE_DIGITS = 12
+
+
 def body_outline(nose, body_length, points_per_segment=400):
     """Outline of the rigid projectile in body axes: (zeta, rho), zeta from the tip backwards, rho the radius.
 
     The nose outline (``nose.outline``) is followed by the shank up to
     ``body_length``; zeta never decreases along the outline (a flat face is a
-    vertical piece at zeta = 0).
+    vertical piece at zeta = 0). The points are rounded to OUTLINE_DIGITS
+    decimals of a metre: numpy's vector maths (log, arccos, ...) differ in the
+    last bit between CPUs, and the erosion would amplify the difference.
     """
     if not body_length > nose.length:
         raise ParameterError("fe projectile", "length", body_length, f"length > nose length {nose.length} m")
-    x, y = nose.outline(points_per_segment)
+    x, y = (np.round(c, OUTLINE_DIGITS) for c in nose.outline(points_per_segment))
     keep = np.concatenate(([True], (np.diff(x) != 0) | (np.diff(y) != 0)))
     x, y = x[keep], y[keep]
     x = np.maximum.accumulate(x)
