@@ -146,7 +146,8 @@ def build(spec: MeshSpec) -> Grid:
                 graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
 
 
-# Decimals of a metre the rigid body's outline is rounded to (1 pm): far below any length of the model.
+# Decimals of a metre the rigid body's outline is rounded to (1 pm): far below any length of the model, but a
+# length all the same, so a shot scaled by two is not exactly the same shot (None: no rounding).
 OUTLINE_DIGITS = 12
 
 
@@ -156,12 +157,16 @@ def body_outline(nose, body_length, points_per_segment=400):
     The nose outline (``nose.outline``) is followed by the shank up to
     ``body_length``; zeta never decreases along the outline (a flat face is a
     vertical piece at zeta = 0). The points are rounded to OUTLINE_DIGITS
-    decimals of a metre: numpy's vector maths (log, arccos, ...) differ in the
-    last bit between CPUs, and the erosion would amplify the difference.
+    decimals of a metre (None: not rounded): numpy's vector maths (log,
+    arccos, ...) differ in the last bit between CPUs, and the erosion would
+    amplify the difference. The grid is the level's one length that is not
+    the shot's.
     """
     if not body_length > nose.length:
         raise ParameterError("fe projectile", "length", body_length, f"length > nose length {nose.length} m")
-    x, y = (np.round(c, OUTLINE_DIGITS) for c in nose.outline(points_per_segment))
+    x, y = nose.outline(points_per_segment)
+    if OUTLINE_DIGITS is not None:
+        x, y = np.round(x, OUTLINE_DIGITS), np.round(y, OUTLINE_DIGITS)
     keep = np.concatenate(([True], (np.diff(x) != 0) | (np.diff(y) != 0)))
     x, y = x[keep], y[keep]
     x = np.maximum.accumulate(x)
