@@ -11,6 +11,7 @@ from pathlib import Path
 
 from penetration.config import check_config
 from penetration.pipeline import fe_scene_shots, load_studies, task
+from penetration.tasks.reference import checked_outputs
 
 configfile: "workflow/config.yaml"
 # Stop before any job runs if the config (file plus --config overrides) is invalid.
@@ -42,9 +43,8 @@ wildcard_constraints:
 
 # FE outputs: `all` builds the configured profile and, for `full`, the CI's coarse profile too.
 FE_PROFILES = ["full", "ci"] if config["fe_profile"] == "full" else ["ci"]
-# check.outputs entries under figures/fe/{profile}/ stand for every profile built
-config["check"]["outputs"] = {path.format(profile=p): spec for path, spec in config["check"]["outputs"].items()
-                              for p in (FE_PROFILES if "{profile}" in path else [None])}
+# check.outputs entries under figures/fe/{profile}/ stand for every profile built; full_only joins with full
+config["check"]["outputs"] = checked_outputs(config["check"], FE_PROFILES)
 
 
 def fe_cfg(profile):
@@ -71,8 +71,6 @@ FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_co
                   "figures/fe/contrast_ensemble_depths.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
                   "figures/fe/rear_face_members.csv", "figures/accuracy_cost.csv",
                   "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png"] if "full" in FE_PROFILES else []
-if FE_CONVERGENCE:
-    config["check"]["outputs"].update(config["check"]["full_only"])
 
 
 include: "workflow/rules/geometry.smk"

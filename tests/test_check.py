@@ -5,7 +5,8 @@ import subprocess
 import pandas as pd
 import pytest
 
-from penetration.tasks.reference import cell_tolerances, column_tolerances, compare, frames_differ, reproduction_problems
+from penetration.tasks.reference import (cell_tolerances, checked_outputs, column_tolerances, compare, frames_differ,
+                                        reproduction_problems)
 
 HEAD = "item,quantity,case,paper,ours,rel_err,tol,status\n"
 CHECK = {"factor": 10.0,
@@ -191,8 +192,7 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     import yaml
     root = Path(__file__).resolve().parents[1]
     check = yaml.safe_load((root / "workflow/config.yaml").read_text())["check"]
-    specs = {path.format(profile=p): spec for path, spec in check["outputs"].items() for p in ("full", "ci")}
-    specs.update(check["full_only"])
+    specs = checked_outputs(check, ["full", "ci"])
     record = root / RECORDS / new_build
     against = root if old_build is None else root / RECORDS / old_build
     files = sorted(p.relative_to(record).as_posix() for p in record.rglob("*.csv"))

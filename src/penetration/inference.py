@@ -83,6 +83,12 @@ def _golden_max(f, a, b, tol=1e-13):
     return 0.5 * (a + b)
 
 
+def _radius_at(ogive, xi):
+    """Radius of a tangent ogive at the fraction xi of its length from the tip, in scalar maths (the same on every
+    CPU, unlike numpy's vector arccos in ``ogive.y``)."""
+    return ogive.radius - ogive.S + math.sqrt(ogive.S ** 2 - ((1.0 - xi) * ogive.length) ** 2)
+
+
 def banded_double_ogive(radius, psi_base, length, xi_c, xi_d, a1):
     """Double ogive of the Fig 4 construction (see module docstring).
 
@@ -95,8 +101,7 @@ def banded_double_ogive(radius, psi_base, length, xi_c, xi_d, a1):
         raise InferenceError(f"length {length} is shorter than the base ogive {base.length}")
     xD = shift + xi_d * base.length
     xC = shift + xi_c * base.length
-    # the base ogive's radius at D in scalar maths (the same on every CPU, unlike numpy's vector arccos)
-    yD = radius - base.S + math.sqrt(base.S ** 2 - ((1.0 - xi_d) * base.length) ** 2)
+    yD = _radius_at(base, xi_d)
     if not (0 < xC < xD and 0 < a1 < yD):
         raise InferenceError(f"need 0 < x_C < x_D and 0 < a1 < a2: x_C={xC:.4g}, x_D={xD:.4g}, a1={a1:.4g}, a2={yD:.4g}")
     alpha = math.atan((yD - a1) / (xD - xC))
@@ -157,7 +162,7 @@ def infer_fig4(rule: Fig4Rule):
     if lo is None:
         raise InferenceError(f"k never exceeds {rule.threshold} under convention {rule.convention}")
     lo, hi = round(lo, ROOT_DIGITS), round(hi, ROOT_DIGITS)   # threshold crossings: roots, see ROOT_DIGITS
-    a2 = float(base.y(np.array([hi * base.length]))[0])
+    a2 = _radius_at(base, hi)
     family = []
     for a1 in np.linspace(0.0, a2, rule.family_points)[1:-1]:
         try:

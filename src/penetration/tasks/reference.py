@@ -225,6 +225,16 @@ def _gap(x, y, rtol, atol, scale, decades):
     return gap, allowed, np.where(log, "decades apart", "|difference|")
 
 
+def checked_outputs(check, profiles):
+    """The check's output specs by path for the FE mesh profiles built: a ``{profile}`` entry stands for each of
+    ``profiles``, and the ``full_only`` entries join when ``full`` is among them."""
+    out = {path.format(profile=p): spec for path, spec in check["outputs"].items()
+           for p in (profiles if "{profile}" in path else [None])}
+    if "full" in profiles:
+        out.update(check["full_only"])
+    return out
+
+
 def _committed(path):
     """Text of ``path`` at git HEAD, or None when not tracked or no git."""
     try:
