@@ -31,11 +31,24 @@ TIMING = ["figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_tra
 # mesh profiles of the convergence study of the FE nose contrasts (Table 3 only), finer than `full`
 # (check_config's schema has refused the names full and ci)
 CONVERGENCE_PROFILES = list(config["fe_convergence"]["profiles"])
+# mesh profiles of the bands of element sizes around `full` and convergence profiles (the mesh realisations of
+# the FE nose contrasts): centre -> its band's profiles
+BANDS = {centre: list(band) for centre, band in config["fe_band"]["bands"].items()}
+BAND_PROFILES = [p for band in BANDS.values() for p in band]
+# element size of every profile beyond full and ci
+EXTRA_PROFILES = {**config["fe_convergence"]["profiles"],
+                  **{p: h for band in config["fe_band"]["bands"].values() for p, h in band.items()}}
+for centre in BANDS:
+    if centre not in ["full", *CONVERGENCE_PROFILES]:
+        raise ValueError(f"fe_band.bands.{centre}: allowed centres full or a profile of fe_convergence.profiles "
+                         f"{CONVERGENCE_PROFILES}")
+if len(BAND_PROFILES) != len(set(BAND_PROFILES)) or set(BAND_PROFILES) & set(CONVERGENCE_PROFILES):
+    raise ValueError(f"fe_band.bands: profile names {BAND_PROFILES} must be distinct and not those of fe_convergence")
 
 
 wildcard_constraints:
     scene=r"[A-Za-z0-9_]+",
-    profile="|".join(["full", "ci", *CONVERGENCE_PROFILES]),
+    profile="|".join(["full", "ci", *EXTRA_PROFILES]),
     size=r"[0-9.]+",
     nose=r"[a-z0-9_]+",
     velocity=r"[0-9.]+",
@@ -44,14 +57,15 @@ wildcard_constraints:
 # FE outputs: `all` builds the configured profile and, for `full`, the CI's coarse profile too.
 FE_PROFILES = ["full", "ci"] if config["fe_profile"] == "full" else ["ci"]
 # check.outputs entries under figures/fe/{profile}/ stand for every profile built; full_only joins with full
-config["check"]["outputs"] = checked_outputs(config["check"], FE_PROFILES)
+config["check"]["outputs"] = checked_outputs(config["check"], FE_PROFILES, BAND_PROFILES)
 
 
 def fe_cfg(profile):
-    """The `fe` config slice for a profile's jobs; a convergence profile (fe_convergence) joins its profiles."""
-    if profile not in CONVERGENCE_PROFILES:
+    """The `fe` config slice for a profile's jobs; a convergence or band profile (fe_convergence, fe_band) joins its
+    profiles."""
+    if profile not in EXTRA_PROFILES:
         return config["fe"]
-    h = config["fe_convergence"]["profiles"][profile]
+    h = EXTRA_PROFILES[profile]
     return {**config["fe"], "profiles": {**config["fe"]["profiles"], profile: {"element_size": h, "mesh_study": [h]}}}
 
 
@@ -68,7 +82,9 @@ def fe_calibration(profile):
 # the convergence of the nose contrasts over the ci, full and convergence meshes (with the full profile only)
 FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
                   "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv",
-                  "figures/fe/contrast_ensemble_depths.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
+                  "figures/fe/contrast_ensemble_depths.csv", "figures/fe/contrast_band.png",
+                  "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
+                  "figures/fe/contrast_band_meshes.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
                   "figures/fe/rear_face_members.csv", "figures/accuracy_cost.csv",
                   "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png"] if "full" in FE_PROFILES else []
 

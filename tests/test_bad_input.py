@@ -259,3 +259,18 @@ def test_convergence_profiles_are_checked(profiles, needle):
     cfg["fe_convergence"]["profiles"] = profiles
     with pytest.raises(ConfigError, match=needle):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+@pytest.mark.parametrize("band,needle", [({"bands": {"full": {}}, "confidence": 0.95}, "fe_band.bands.full"),
+                                         ({"bands": {"full": {"fine": 0.009}}, "confidence": 0.95}, "fe_band.bands.full"),
+                                         ({"bands": {"ci": {"band3": 0.02}}, "confidence": 0.95}, "fe_band.bands"),
+                                         ({"bands": {"full": {"band1": 0.009, "band2": 0.0005}}, "confidence": 0.95},
+                                          "fe_band.bands.full.band2"),
+                                         ({"bands": {"full": {"band1": 0.009}}, "confidence": 1.0}, "fe_band.confidence")])
+def test_band_profiles_are_checked(band, needle):
+    """A mesh band is centred on full or a convergence profile and holds profiles named band and digits, element
+    sizes in (1 mm, 50 mm]; its interval's confidence lies in (0, 1)."""
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["fe_band"] = band
+    with pytest.raises(ConfigError, match=needle):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")

@@ -1,4 +1,5 @@
-"""The erosion-chaos ensemble of the FE level: its statistics against hand-computed values, and its input checks."""
+"""The erosion-chaos ensemble and the mesh band of the FE level: their statistics against hand-computed values, and
+their input checks."""
 import json
 import math
 from types import SimpleNamespace
@@ -6,7 +7,7 @@ from types import SimpleNamespace
 import pandas as pd
 import pytest
 
-from penetration.figures.fe_level import fe_contrast_ensemble, fe_rear_face
+from penetration.figures.fe_level import fe_contrast_band, fe_contrast_ensemble, fe_rear_face
 from penetration.tasks.fe import fe_ensemble_shot
 
 NOSES = ("double_ogive", "crh45", "crh3")
@@ -120,3 +121,77 @@ def test_rear_face_needs_both_targets_on_one_mesh(tmp_path):
     inputs, outputs = _rear_inputs(tmp_path, [5.0, 5.1], [])
     with pytest.raises(ValueError, match="both"):
         fe_rear_face(inputs, outputs, SimpleNamespace(dpi=50, confidence=0.95))
+
+
+def _band_inputs(tmp_path, meshes):
+    """Table 3 files of one velocity (500 m/s) per mesh: meshes lists (elements across, fs, {nose: depth})."""
+    paper = {"double_ogive": 2.454, "crh45": 2.255, "crh3": 2.174}
+    ratios, tables, cals = [], [], []
+    for across, fs, depth in meshes:
+        h = 0.07 / across
+        t = tmp_path / f"table3_{across}.csv"
+        pd.DataFrame({"velocity_ms": [500] * 3, "nose": list(NOSES), "fe_m": [depth[n] for n in NOSES],
+                      "paper_sim_m": [paper[n] for n in NOSES], "element_size_m": [h] * 3}).to_csv(t, index=False)
+        r = tmp_path / f"ratios_{across}.csv"
+        rows = [(name, depth[a] / depth[b], paper[a] / paper[b]) for name, a, b in
+                (("DO/CRH 4.5", "double_ogive", "crh45"), ("CRH 4.5/CRH 3", "crh45", "crh3"), ("DO/CRH 3", "double_ogive", "crh3"))]
+        pd.DataFrame({"velocity_ms": [500] * 3, "contrast": [x[0] for x in rows], "fe_ratio": [x[1] for x in rows],
+                      "paper_sim_ratio": [x[2] for x in rows]}).to_csv(r, index=False)
+        c = tmp_path / f"cal_{across}.json"
+        c.write_text(json.dumps({"element_size": h, "elements_across_radius": across, "fs": fs, "residual_m": 0.001}))
+        tables.append(str(t)), ratios.append(str(r)), cals.append(str(c))
+    outputs = SimpleNamespace(png=str(tmp_path / "b.png"), csv=str(tmp_path / "b.csv"), depths=str(tmp_path / "bd.csv"),
+                              meshes=str(tmp_path / "bm.csv"))
+    return SimpleNamespace(ratios=ratios, tables=tables, calibrations=cals), outputs
+
+
+def test_band_statistics_against_hand_values(tmp_path):
+    # four meshes; DO/CRH 4.5 ratios 1.0, 1.1, 1.2, 1.1 (mean 1.1, sample standard deviation sqrt(0.02/3));
+    # CRH 4.5 and CRH 3 equal at every mesh
+    inputs, outputs = _band_inputs(tmp_path, [(7.5, 1.0, {"double_ogive": 2.0, "crh45": 2.0, "crh3": 2.0}),
+                                              (8.0, 1.1, {"double_ogive": 2.2, "crh45": 2.0, "crh3": 2.0}),
+                                              (8.5, 1.2, {"double_ogive": 2.4, "crh45": 2.0, "crh3": 2.0}),
+                                              (9.0, 0.9, {"double_ogive": 2.2, "crh45": 2.0, "crh3": 2.0})])
+    fe_contrast_band(inputs, outputs, SimpleNamespace(dpi=50, confidence=0.95, bands=[("full", len(inputs.ratios))]))
+    t = pd.read_csv(outputs.csv).set_index("contrast")
+    r = t.loc["DO/CRH 4.5"]
+    sd = math.sqrt(0.02 / 3)
+    assert r.meshes == 4 and r.mean_ratio == pytest.approx(1.1) and r.std_ratio == pytest.approx(sd)
+    half = 3.182446305284263 * sd / 2  # Student's t, 3 degrees of freedom, 97.5 % quantile, over sqrt(4)
+    assert r.interval_low == pytest.approx(1.1 - half) and r.interval_high == pytest.approx(1.1 + half)
+    assert r.mean_minus_paper_points == pytest.approx(100 * (1.1 - 2.454 / 2.255))
+    assert bool(r.paper_inside_interval) and bool(r.within_2_points_goal)  # paper 1.088: 1.2 points under the mean
+    assert (r.failure_strain_min, r.failure_strain_max) == (0.9, 1.2)
+    c = t.loc["CRH 4.5/CRH 3"]
+    assert c.std_ratio == 0.0 and not bool(c.paper_inside_interval) and not bool(c.within_2_points_goal)
+    d = pd.read_csv(outputs.depths).set_index("nose")
+    assert d.loc["double_ogive", "mean_m"] == pytest.approx(2.2)
+    assert d.loc["double_ogive", "mean_rel_dev_pct"] == pytest.approx(100 * (2.2 / 2.454 - 1))
+    assert bool(d.loc["double_ogive", "within_5pct_goal"]) is False  # -10.4 %
+    m = pd.read_csv(outputs.meshes)
+    assert len(m) == 12 and sorted(m.elements_across_radius.unique()) == [7.5, 8.0, 8.5, 9.0]
+    assert set(t.band) == {"full"} and set(t.centre_elements_across) == {7.5}  # the first mesh is the centre
+
+
+def test_bands_are_kept_apart(tmp_path):
+    """Two bands of two meshes each: each band's statistics are its own meshes'."""
+    inputs, outputs = _band_inputs(tmp_path, [(8.0, 1.0, {"double_ogive": 2.0, "crh45": 2.0, "crh3": 2.0}),
+                                              (8.5, 1.0, {"double_ogive": 2.2, "crh45": 2.0, "crh3": 2.0}),
+                                              (10.0, 1.1, {"double_ogive": 3.0, "crh45": 2.0, "crh3": 2.0}),
+                                              (10.5, 1.1, {"double_ogive": 3.2, "crh45": 2.0, "crh3": 2.0})])
+    fe_contrast_band(inputs, outputs, SimpleNamespace(dpi=50, confidence=0.95, bands=[("full", 2), ("fine", 2)]))
+    t = pd.read_csv(outputs.csv)
+    r = t[t.contrast == "DO/CRH 4.5"].set_index("band")
+    assert r.loc["full", "mean_ratio"] == pytest.approx(1.05) and r.loc["fine", "mean_ratio"] == pytest.approx(1.55)
+    assert r.loc["fine", "centre_elements_across"] == 10.0 and r.loc["full", "meshes"] == 2
+    with pytest.raises(ValueError, match="bands"):
+        fe_contrast_band(inputs, outputs, SimpleNamespace(dpi=50, confidence=0.95, bands=[("full", 2)]))
+
+
+def test_band_rejects_a_table_of_another_mesh(tmp_path):
+    inputs, outputs = _band_inputs(tmp_path, [(7.5, 1.0, dict.fromkeys(NOSES, 2.0)), (8.0, 1.0, dict.fromkeys(NOSES, 2.0))])
+    t = pd.read_csv(inputs.tables[1])
+    t["element_size_m"] = 0.007
+    t.to_csv(inputs.tables[1], index=False)
+    with pytest.raises(ValueError, match="element sizes"):
+        fe_contrast_band(inputs, outputs, SimpleNamespace(dpi=50, confidence=0.95, bands=[("full", len(inputs.ratios))]))

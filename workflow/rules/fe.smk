@@ -1,5 +1,5 @@
 # The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles,
-# or a convergence profile of fe_convergence.profiles);
+# or a convergence or band profile of fe_convergence.profiles, fe_band.profiles);
 # one job per shot (FE runs use both cores: threads 2).
 
 FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
@@ -225,6 +225,27 @@ rule fe_contrast_convergence:
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_convergence.tsv"
     log: "results/logs/fe_contrast_convergence.log",
+    script: "../scripts/run_task.py"
+
+
+# every band's meshes, centre first, band after band (params.bands: the centres and their numbers of meshes)
+BAND_MESHES = [p for centre, band in BANDS.items() for p in (centre, *band)]
+
+
+rule fe_contrast_band:
+    input: **task("figures.fe_level"),
+           ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=BAND_MESHES),
+           tables=expand("figures/fe/{profile}/table3.csv", profile=BAND_MESHES),
+           calibrations=[fe_calibration(p) for p in BAND_MESHES],
+    output: png=report("figures/fe/contrast_band.png", caption="../report/captions/contrast_band.rst", category="Finite-element level"),
+            csv="figures/fe/contrast_band.csv", depths="figures/fe/contrast_band_depths.csv",
+            meshes="figures/fe/contrast_band_meshes.csv",
+    params: dpi=config["figures"]["dpi"], confidence=config["fe_band"]["confidence"],
+            bands=[(centre, 1 + len(band)) for centre, band in BANDS.items()],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_contrast_band.tsv"
+    log: "results/logs/fe_contrast_band.log",
     script: "../scripts/run_task.py"
 
 

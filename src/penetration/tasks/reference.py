@@ -225,13 +225,15 @@ def _gap(x, y, rtol, atol, scale, decades):
     return gap, allowed, np.where(log, "decades apart", "|difference|")
 
 
-def checked_outputs(check, profiles):
+def checked_outputs(check, profiles, bands=()):
     """The check's output specs by path for the FE mesh profiles built: a ``{profile}`` entry stands for each of
-    ``profiles``, and the ``full_only`` entries join when ``full`` is among them."""
+    ``profiles``, and the ``full_only`` entries join when ``full`` is among them, a ``{band}`` one for each of
+    ``bands`` (the band profiles of fe_band)."""
     out = {path.format(profile=p): spec for path, spec in check["outputs"].items()
            for p in (profiles if "{profile}" in path else [None])}
     if "full" in profiles:
-        out.update(check["full_only"])
+        out.update({path.format(band=b): spec for path, spec in check["full_only"].items()
+                    for b in (bands if "{band}" in path else [None])})
     return out
 
 

@@ -1,0 +1,46 @@
+"""A Table 3 shot at the FE level on a mesh of another element size, the failure strain held fixed, for
+workflow/records/mesh_alignment.
+
+Usage (from the repository root, after `snakemake -c2 figures/fe/full/table3.csv`, which builds the inferred
+nose and the calibration):
+
+    python workflow/records/mesh_alignment/run.py NOSE VELOCITY ACROSS [FS]
+
+NOSE: a nose of workflow/scenes/fe/table3.yaml; VELOCITY in m/s; ACROSS: elements across the 70 mm shank
+radius (element size 0.07/ACROSS m, every other setting the full profile's); FS: the failure strain (default:
+the full profile's calibration). Prints one JSON line.
+"""
+import contextlib
+import io
+import json
+import sys
+from types import SimpleNamespace
+
+import yaml
+
+from penetration import reference
+from penetration.cavity_level import material_switches
+from penetration.fe.shot import run_shot
+from penetration.fe_level import expected_depth, with_failure_strain
+from penetration.io import load_json
+from penetration.tasks.cavity import configured_hjc
+from penetration.tasks.common import scene_from_inputs
+from penetration.tasks.fe import _target, fe_settings
+
+cfg = yaml.safe_load(open("workflow/config.yaml"))
+nose_name, v, across = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+fs = float(sys.argv[4]) if len(sys.argv) > 4 else load_json("results/fe/full/calibration_h0.00875.json")["fs"]
+inputs = SimpleNamespace(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json",
+                         reference=cfg["reference"], scene="workflow/scenes/fe/table3.yaml",
+                         schema="workflow/schemas/scene.schema.json")
+refs = reference.load_reference(inputs.reference)
+sc = scene_from_inputs(inputs, ("fe",))
+nose = sc.noses[nose_name]
+material = configured_hjc(refs, cfg["cavity"], **material_switches(sc.effects, sc.material, cfg["cavity"]))
+settings = with_failure_strain(fe_settings(cfg["fe"], "full", nose.radius / across), fs)
+with contextlib.redirect_stdout(io.StringIO()):
+    r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg["fe"]),
+                 expected_depth=expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), friction=sc.friction)
+print(json.dumps({"nose": nose_name, "velocity_ms": v, "elements_across_radius": across,
+                  "element_size_m": settings.element_size, "failure_strain": fs, "depth_m": r.depth, "status": r.status,
+                  "wall_time_s": round(r.wall_time, 1)}), flush=True)
