@@ -34,10 +34,10 @@ CONVERGENCE_PROFILES = list(config["fe_convergence"]["profiles"])
 # mesh profiles of the bands of element sizes around `full` and convergence profiles (the mesh realisations of
 # the FE nose contrasts): centre -> its band's profiles
 BANDS = {centre: list(band) for centre, band in config["fe_band"]["bands"].items()}
-BAND_PROFILES = [p for band in BANDS.values() for p in band]
+BAND_PROFILES = [p for band in BANDS.values() for p in band]  # a name in two bands shows twice (refused below)
+BAND_SIZES = {p: h for band in config["fe_band"]["bands"].values() for p, h in band.items()}
 # element size of every profile beyond full and ci
-EXTRA_PROFILES = {**config["fe_convergence"]["profiles"],
-                  **{p: h for band in config["fe_band"]["bands"].values() for p, h in band.items()}}
+EXTRA_PROFILES = {**config["fe_convergence"]["profiles"], **BAND_SIZES}
 for centre in BANDS:
     if centre not in ["full", *CONVERGENCE_PROFILES]:
         raise ValueError(f"fe_band.bands.{centre}: allowed centres full or a profile of fe_convergence.profiles "

@@ -1,5 +1,5 @@
 # The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles,
-# or a convergence or band profile of fe_convergence.profiles, fe_band.profiles);
+# or a convergence or band profile of fe_convergence.profiles, fe_band.bands);
 # one job per shot (FE runs use both cores: threads 2).
 
 FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)

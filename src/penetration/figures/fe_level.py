@@ -305,20 +305,29 @@ CONVERGENCE_NOSES = {"DO/CRH 4.5": ("double_ogive", "crh45"), "CRH 4.5/CRH 3": (
                      "DO/CRH 3": ("double_ogive", "crh3")}
 
 
+def _profile_table3(ratios_path, table_path, cal_path):
+    """A mesh profile's DO1 calibration, Table 3 and nose contrasts (those of CONVERGENCE_NOSES), checked to belong
+    to one mesh."""
+    cal = load_json(cal_path)
+    t3 = pd.read_csv(table_path)
+    if not all(math.isclose(h, cal["element_size"], rel_tol=1e-9) for h in t3.element_size_m):
+        raise ValueError(f"{table_path}: element sizes {sorted(set(t3.element_size_m))}; allowed: the calibration's "
+                         f"{cal['element_size']} m ({cal_path})")
+    ratios = pd.read_csv(ratios_path)
+    return cal, t3, ratios[ratios.contrast.isin(list(CONVERGENCE_NOSES))]
+
+
 @task
 def fe_contrast_convergence(inputs, outputs, params):
     """The FE nose contrasts of Table 3 at several meshes (each with its own DO1 calibration): converged or not,
     beside the interval of the erosion chaos at the mesh of the ensemble (fe_contrast_ensemble)."""
     rows = []
     across = {}
-    for ratios_path, table_path, cal_path in zip(inputs.ratios, inputs.tables, inputs.calibrations):
-        cal = load_json(cal_path)
+    for paths in zip(inputs.ratios, inputs.tables, inputs.calibrations):
+        cal, t3, ratios = _profile_table3(*paths)
         across[round(cal["element_size"], 12)] = cal["elements_across_radius"]
-        t3 = pd.read_csv(table_path)
         depth = {(int(r.velocity_ms), r.nose): r.fe_m for r in t3.itertuples()}
-        for r in pd.read_csv(ratios_path).itertuples():
-            if r.contrast not in CONVERGENCE_NOSES:
-                continue
+        for r in ratios.itertuples():
             num, den = CONVERGENCE_NOSES[r.contrast]
             v = int(r.velocity_ms)
             rows.append({"elements_across_radius": cal["elements_across_radius"], "element_size_m": cal["element_size"],
@@ -431,19 +440,13 @@ def _band_rows(ratios_paths, table_paths, cal_paths, band, confidence):
     """One band's meshes (centre first): per mesh and contrast, and per cell and contrast over the meshes."""
     meshes, cells, ratios = [], {}, {}
     centre = None
-    for ratios_path, table_path, cal_path in zip(ratios_paths, table_paths, cal_paths):
-        cal = load_json(cal_path)
-        t3 = pd.read_csv(table_path)
-        if not all(math.isclose(h, cal["element_size"], rel_tol=1e-9) for h in t3.element_size_m):
-            raise ValueError(f"{table_path}: element sizes {sorted(set(t3.element_size_m))}; allowed: the calibration's "
-                             f"{cal['element_size']} m ({cal_path})")
+    for paths in zip(ratios_paths, table_paths, cal_paths):
+        cal, t3, mesh_ratios = _profile_table3(*paths)
         across = cal["elements_across_radius"]
         centre = across if centre is None else centre
         for r in t3.itertuples():
             cells.setdefault((int(r.velocity_ms), r.nose), {"paper": r.paper_sim_m, "x": []})["x"].append(r.fe_m)
-        for r in pd.read_csv(ratios_path).itertuples():
-            if r.contrast not in CONVERGENCE_NOSES:
-                continue
+        for r in mesh_ratios.itertuples():
             v = int(r.velocity_ms)
             ratios.setdefault((r.contrast, v), {"paper": r.paper_sim_ratio, "x": []})["x"].append(r.fe_ratio)
             meshes.append({"band": band, "centre_elements_across": centre, "elements_across_radius": across,
@@ -490,13 +493,13 @@ def fe_contrast_band(inputs, outputs, params):
     the meshes, its Student-t interval at params.confidence, and the paper's simulated value against both.
     params.bands: (centre profile, number of meshes) per band, in the order of the inputs (centre first).
     """
-    parts, k = [], 0
+    parts, start = [], 0
     for band, n in params.bands:
-        sl = slice(k, k + n)
+        sl = slice(start, start + n)
         parts.append(_band_rows(inputs.ratios[sl], inputs.tables[sl], inputs.calibrations[sl], band, params.confidence))
-        k += n
-    if k != len(inputs.ratios):
-        raise ValueError(f"{len(inputs.ratios)} meshes given; the bands {params.bands} name {k}")
+        start += n
+    if start != len(inputs.ratios):
+        raise ValueError(f"{len(inputs.ratios)} meshes given; the bands {params.bands} name {start}")
     m = pd.concat([p[0] for p in parts]).sort_values(["centre_elements_across", "contrast", "velocity_ms",
                                                       "elements_across_radius"])
     d = pd.concat([p[1] for p in parts])
