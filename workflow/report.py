@@ -111,7 +111,7 @@ table(claims[["quantity", "case", "paper", "ours", "rel_err", "status"]])
 # %% [markdown]
 # The finite-element contrasts over meshes (each calibrated on DO1 on its own: `figures/fe/contrast_convergence.png`),
 # over realisations of the erosion chaos at the default mesh (`figures/fe/contrast_ensemble.png`) and over bands
-# of meshes of nearly the same size around 8 and 10 elements across the shank radius, each mesh calibrated on DO1
+# of meshes of nearly the same size around 8, 10 and 12 elements across the shank radius, each mesh calibrated on DO1
 # on its own (`figures/fe/contrast_band.png`): where the nose meets the element rows moves a depth more than the
 # erosion chaos does, and a band's mean and interval, which carry that scatter and the calibration's, are this
 # level's estimate of each contrast and depth at that resolution:
