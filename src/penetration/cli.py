@@ -106,11 +106,13 @@ def _keywords(pairs):
 
 def _predict(args) -> int:
     """Predict the shots of a CSV file; nothing is written unless at least one row could be predicted."""
-    from .io import read_rows, write_rows
+    from .io import TargetError, check_target, read_rows, write_rows
     from .levels import output_fields, predict_rows
     src, out = Path(args.shots), Path(args.out)
-    if out.is_dir():
-        return _fail(f"--out {args.out} is a directory; allowed: the path of a CSV file to write")
+    try:
+        check_target(out)
+    except TargetError as err:
+        return _fail(f"--out {args.out}: {err}")
     if out.exists() and src.exists() and out.resolve() == src.resolve():
         return _fail(f"--out {args.out} is the shots file itself; allowed: a different path (the input is never overwritten)")
     try:
@@ -130,6 +132,8 @@ def _predict(args) -> int:
         return _fail(f"no shot in {args.shots} could be predicted ({len(rows)} rows); nothing written")
     try:
         write_rows(out, output_fields(fields, args.model), good)
+    except TargetError as err:
+        return _fail(f"--out {args.out}: {err}")
     except OSError as err:
         name = str(err.filename or "")
         where = "" if name in ("", str(out)) else f" (directory {out.parent})" if name.endswith(".tmp") else f" ({name})"
@@ -187,6 +191,7 @@ def _shot(args):
 
 
 def _one_shot(args) -> int:
+    from .io import TargetError, check_target
     from .levels import run
     if args.command == "simulate" and args.model == "analytic":
         return _fail("--model analytic has no history; allowed for simulate: trajectory, cavity, fe")
@@ -197,8 +202,11 @@ def _one_shot(args) -> int:
             from .levels import Context
             ctx = Context(strength_law=args.strength_law)
         out = Path(args.out) if args.command == "simulate" else None
-        if out is not None and out.is_dir():
-            raise ParameterError("argument", "--out", args.out, "the path of a CSV file to write")
+        if out is not None:
+            try:
+                check_target(out)
+            except TargetError as err:
+                return _fail(f"--out {args.out}: {err}")
         res = run(shot, args.model, ctx)
     except (ParameterError, OSError, RuntimeError) as err:
         return _fail(str(err))
@@ -209,6 +217,8 @@ def _one_shot(args) -> int:
         cols = {"t": "t_s", "depth": "depth_m", "velocity": "velocity_m_s", "deceleration": "deceleration_m_s2"}
         try:
             write_csv(pd.DataFrame({cols[k]: v for k, v in res.history.items()}), out)
+        except TargetError as err:
+            return _fail(f"--out {args.out}: {err}")
         except OSError as err:
             return _fail(f"cannot write --out {args.out}: {err.strerror or err}")
         rec["history"] = str(out)

@@ -15,6 +15,7 @@ import dataclasses
 import json
 import os
 import secrets
+import stat
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -33,15 +34,43 @@ def task(fn):
 
 
 # --------------------------------------------------------------- atomic I/O
+class TargetError(OSError):
+    """A write whose target exists and is not a regular file (a device, FIFO, socket or directory)."""
+
+
+_KINDS = ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+          (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"))
+
+
+def check_target(path):
+    """Raise TargetError unless ``path`` is a regular file or does not exist yet (a symlink is judged by what it
+    points to; a dangling one counts as a new path): renaming a finished file over a device, FIFO or socket would
+    replace it with a regular file, and over a directory would fail only after the work is done."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        return
+    except NotADirectoryError:
+        return  # a parent is a file: the write fails with its own error
+    if stat.S_ISREG(mode):
+        return
+    kind = next((text for test, text in _KINDS if test(mode)), "not a regular file")
+    via = f" (a symlink to {os.path.realpath(path)})" if os.path.islink(path) else ""
+    raise TargetError(f"{path} is {kind}{via}; allowed: a regular file or a new path")
+
+
 @contextmanager
 def atomic(path):
-    """Yield a temporary sibling path; it replaces ``path`` only if the block succeeds."""
+    """Yield a temporary sibling path; it replaces ``path`` only if the block succeeds. A target that exists and is
+    not a regular file is refused before anything is written (check_target)."""
     path = Path(path)
+    check_target(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
     os.close(os.open(tmp, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))  # mode 0666 minus the umask
     try:
         yield tmp
+        check_target(path)  # again: the block may have run for minutes
         os.replace(tmp, path)
     finally:
         if tmp.exists():
