@@ -1,35 +1,51 @@
 # Two commands on a fresh machine with Python 3.11:
-#   make reproduce   install into .venv (pinned versions) and rebuild every figure and table
+#   make reproduce   install into .venv (pinned versions) and rebuild every figure and table of the paper
 #   make test        install into .venv (pinned versions, with test extras) and run the tests
+# Others: make install, make studies (the research studies, hours), make check (rebuild the paper, compare with
+# the committed outputs, run the slow tests), make check-studies, make lock, make clean.
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 CORES ?= 2
-# Mesh profile of the finite-element stage that `make check` builds and compares: full (default; also builds ci) or ci.
+# Mesh profile of the finite-element level that `make reproduce` and `make check` build: full (8 elements across
+# the shank radius, the default) or ci (3 across, what CI builds).
 FE_PROFILE ?= full
 # Exact versions of every dependency, generated from pyproject.toml's ranges by `make lock`.
 LOCK := requirements.lock
+# Snakemake with a progress line (jobs done/total, time left from the committed records) after every job.
+BUILD := $(BIN)/python -m penetration.build -c$(CORES)
 
-.PHONY: reproduce test check install lock clean
+.PHONY: reproduce studies test check check-studies install lock clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
+# Installs the package and compiles its numba kernels once (about 1.5 minutes), so that no later run pays for it.
 $(VENV)/.installed: pyproject.toml $(LOCK) | $(BIN)/python
 	$(BIN)/python -m pip install --quiet --constraint $(LOCK) -e ".[test]"
+	$(BIN)/python -m penetration.warmup
 	touch $@
 
 install: $(VENV)/.installed
 
 reproduce: install
-	$(BIN)/snakemake -c$(CORES)
+	$(BUILD) all --config fe_profile=$(FE_PROFILE)
+
+# The research studies (their outputs are committed; see README): then the per-rule records and the report again.
+studies: install
+	$(BUILD) studies
+	$(BUILD) all --forcerun pipeline_timing
 
 check: install
-	$(BIN)/snakemake -c$(CORES) all reproduce_check --forcerun reproduce_check --config fe_profile=$(FE_PROFILE)
+	$(BUILD) all reproduce_check --forcerun reproduce_check --config fe_profile=$(FE_PROFILE)
+	$(BIN)/python -m pytest -m slow
+
+check-studies: install
+	$(BUILD) studies reproduce_check_studies --forcerun reproduce_check_studies
 
 test: install
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -m "not slow"
 
 # Regenerate the lock: the newest versions pyproject.toml allows, resolved in a scratch environment.
 lock:

@@ -1,6 +1,14 @@
-# Replication of Liu, Pi & Huang (2015), "Penetration performance of
-# double-ogive-nose projectiles". `snakemake -c2` rebuilds every figure and
-# table; `snakemake -c2 figures/fig16.png` one figure and what it needs.
+# Replication of Liu, Pi & Huang (2015), "Penetration performance of double-ogive-nose projectiles".
+#
+# Two targets:
+#   `snakemake -c2` (rule all)         every figure and table of the paper at every level, the finite-element level
+#                                      at the mesh profile `fe_profile` (default full), the diff and the report;
+#   `snakemake -c2 studies`            the research studies (mesh bands and convergence profiles, ensembles of the
+#                                      erosion chaos, the rear face, the moving window, the mesh study of the
+#                                      failure strain, the cavity and trajectory solver studies, accuracy against
+#                                      cost). Their outputs are committed; the report reads them from disk, and no
+#                                      output of `all` depends on a study.
+# `snakemake -c2 figures/fig16.png` builds one figure and what it needs.
 #
 # Every rule is declarations plus one call into src/: `**task(MODULE)` names
 # the module holding the rule's task (the function of the rule's name) and
@@ -20,12 +28,8 @@ STUDIES = load_studies("workflow/studies", "workflow/schemas/study.schema.json")
 SCENE_SCHEMA = "workflow/schemas/scene.schema.json"
 GEOMETRY_RESULTS = dict(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json")
 FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig12", "fig14", "fig15",
-           "fig16", "validation", "cavity_sigma_n", "cavity_table3_sensitivity", "nose_contrasts"]
+           "fig16", "validation", "cavity_sigma_n", "nose_contrasts"]
 TABLES = ["table1", "table2", "table3", "table4"]
-# Files whose content depends on the machine's speed (not compared by the reproduction check).
-TIMING = ["figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_trajectory.csv",
-          "figures/timing/accuracy_cavity.png", "figures/timing/accuracy_cavity.csv",
-          "figures/timing/ablation_cavity.csv"]
 
 
 # mesh profiles of the convergence study of the FE nose contrasts (Table 3 only), finer than `full`
@@ -54,10 +58,12 @@ wildcard_constraints:
     velocity=r"[0-9.]+",
     member=r"[0-9]+",
 
-# FE outputs: `all` builds the configured profile and, for `full`, the CI's coarse profile too.
-FE_PROFILES = ["full", "ci"] if config["fe_profile"] == "full" else ["ci"]
-# check.outputs entries under figures/fe/{profile}/ stand for every profile built; full_only joins with full
-config["check"]["outputs"] = checked_outputs(config["check"], FE_PROFILES, BAND_PROFILES)
+# FE outputs: `all` builds the configured profile only (full: the level's default mesh; ci: the CI's coarse one).
+FE_PROFILES = [config["fe_profile"]]
+# check.outputs entries under figures/fe/{profile}/ stand for the profile built; check.studies entries for the studies'
+# outputs ({band}: each band profile)
+CHECK_STUDIES = checked_outputs(config["check"], ["full"], BAND_PROFILES, "studies")
+config["check"]["outputs"] = checked_outputs(config["check"], FE_PROFILES)
 
 
 def fe_cfg(profile):
@@ -79,16 +85,6 @@ def fe_calibration(profile):
     return f"results/fe/{profile}/calibration_h{fe_cfg(profile)['profiles'][profile]['element_size']}.json"
 
 
-# the convergence of the nose contrasts over the ci, full and convergence meshes (with the full profile only)
-FE_CONVERGENCE = ["figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
-                  "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv",
-                  "figures/fe/contrast_ensemble_depths.csv", "figures/fe/contrast_band.png",
-                  "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
-                  "figures/fe/contrast_band_meshes.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
-                  "figures/fe/rear_face_members.csv", "figures/accuracy_cost.csv",
-                  "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png"] if "full" in FE_PROFILES else []
-
-
 include: "workflow/rules/geometry.smk"
 include: "workflow/rules/analytic.smk"
 include: "workflow/rules/trajectory.smk"
@@ -100,20 +96,36 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/reference.smk"
 
 
-# Everything `all` builds; the replication report reads these and is built last.
+# Everything `all` builds; the replication report reads these (and the studies' committed outputs) and is built last.
 REPORT_INPUTS = [
     expand("figures/{f}.png", f=FIGURES),
     expand("figures/{t}.csv", t=TABLES),
     list(config["check"]["outputs"]),
     "figures/diff_summary.md",
-    TIMING,
     expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
-    expand("figures/timing/fe_mesh_study_{profile}.{ext}", profile=FE_PROFILES, ext=["png", "csv"]),
     expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
     expand("figures/fe/{profile}/validation_levels.png", profile=FE_PROFILES),
     expand("figures/timing/validation_levels_{profile}.csv", profile=FE_PROFILES),
-    expand("figures/timing/fe_window_{profile}.csv", profile=FE_PROFILES),
-    FE_CONVERGENCE,
+]
+
+# The studies' outputs (`snakemake -c2 studies`, `make studies`): committed, read by the report from disk, compared by
+# `make check-studies` (config check.studies). Built at the full profile (the ci profile's Table 3 joins the
+# convergence over meshes and accuracy against cost).
+STUDY_OUTPUTS = [
+    "figures/ablation_cavity.csv", "figures/timing/ablation_cavity.csv", "figures/do1_family_sensitivity.csv",
+    "figures/cavity_table3_sensitivity.png", "figures/cavity_table3_sensitivity.csv",
+    "figures/cavity_variant_contrasts.csv",
+    "figures/accuracy_trajectory.csv", "figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_trajectory.csv",
+    "figures/accuracy_cavity.csv", "figures/timing/accuracy_cavity.png", "figures/timing/accuracy_cavity.csv",
+    "figures/fe/full/window.csv", "figures/fe/full/window_summary.csv", "figures/timing/fe_window_full.csv",
+    "figures/timing/fe_mesh_study_full.png", "figures/timing/fe_mesh_study_full.csv",
+    "figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
+    "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv", "figures/fe/contrast_ensemble_depths.csv",
+    "figures/fe/contrast_band.png", "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
+    "figures/fe/contrast_band_meshes.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
+    "figures/fe/rear_face_members.csv", "figures/accuracy_cost.csv",
+    "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png",
+    *CHECK_STUDIES,
 ]
 
 
@@ -123,3 +135,7 @@ include: "workflow/rules/report.smk"
 rule all:
     default_target: True
     input: "figures/report.html", REPORT_INPUTS,
+
+
+rule studies:
+    input: STUDY_OUTPUTS,

@@ -3,3 +3,21 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
+
+
+def committed(path):
+    """Text of ``path`` (relative to the repository) as committed at git HEAD: tests of the committed outputs read
+    these, never the working tree's copies, which an interrupted rebuild may have replaced. Falls back to the file
+    where the tree is not a git checkout."""
+    import subprocess
+    out = subprocess.run(["git", "show", f"HEAD:{path}"], capture_output=True, text=True, cwd=ROOT)
+    return out.stdout if out.returncode == 0 else (ROOT / path).read_text()
+
+
+def committed_files(prefix):
+    """Paths under ``prefix`` committed at git HEAD (the working tree's files where it is not a git checkout)."""
+    import subprocess
+    out = subprocess.run(["git", "ls-tree", "-r", "--name-only", "HEAD", prefix], capture_output=True, text=True, cwd=ROOT)
+    if out.returncode == 0:
+        return out.stdout.split()
+    return [p.relative_to(ROOT).as_posix() for p in (ROOT / prefix).rglob("*") if p.is_file()]

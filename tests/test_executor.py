@@ -36,6 +36,7 @@ def cluster_run(tmp_path_factory):
     return work, res
 
 
+@pytest.mark.slow
 def test_jobs_run_as_submitted_scripts(cluster_run):
     work, res = cluster_run
     assert res.returncode == 0, res.stderr[-3000:]
@@ -44,8 +45,10 @@ def test_jobs_run_as_submitted_scripts(cluster_run):
     assert rules == ["fig01", "resistance_shares", "table1"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", COMPARED)
 def test_outputs_equal_the_committed_ones(cluster_run, path):
     work, res = cluster_run
     assert res.returncode == 0, res.stderr[-3000:]
-    assert (work / path).read_bytes() == (ROOT / path).read_bytes()
+    from conftest import committed
+    assert (work / path).read_text() == committed(path)

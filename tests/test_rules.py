@@ -155,6 +155,7 @@ def rerun(tree, module):
 @pytest.mark.parametrize("module", ["units.py", "hjc.py", "hjc_effects.py", "io.py", "config.py", "reference.py",
                                     "geometry.py", "trajectory.py", "tasks/common.py", "figures/common.py",
                                     "figures/fig04.py"])
+@pytest.mark.slow
 def test_editing_a_module_reruns_exactly_its_users(tree, closures, module):
     in_dag = tree[2]  # the default target's rules (reproduce_check runs only when asked for)
     users = {rule for rule, mod in registered_tasks().items() if SRC / module in closures[mod] and rule in in_dag}

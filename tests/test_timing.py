@@ -41,6 +41,17 @@ def test_sums_per_rule_and_stage(tmp_path):
     assert stages.loc["fe [full]", "wall_total_s"] == 40.0 and stages.loc["fe [full]", "jobs"] == 2
     assert stages.loc["fe [ci]", "wall_total_s"] == 2.0 and stages.loc["fe", "wall_total_s"] == 3.0
     assert stages.wall_total_s.sum() == 45.0   # the stale record is not counted
+    # a later build of fe_table3 alone: its record replaces the row, the other rows stay, a removed rule's row goes
+    for f in tmp_path.glob("*.tsv"):
+        f.unlink()
+    (tmp_path / "fe_table3_full.tsv").write_text("s\th:m:s\tmax_rss\n5.0\t0:00:00\t100.0\n")
+    rules = pd.read_csv(out.rules)
+    pd.concat([rules, rules.iloc[:1].assign(rule="gone")]).to_csv(out.rules, index=False)
+    pipeline_timing(None, out, NS(folder=str(tmp_path), patterns=pats, rule_files={k: "fe" for k in PATTERNS}))
+    rules = pd.read_csv(out.rules).set_index(["stage", "rule"])
+    assert rules.loc[("fe [full]", "fe_shot"), "wall_total_s"] == 40.0 and rules.loc[("fe [full]", "fe_table3"), "jobs"] == 1
+    assert "gone" not in rules.index.get_level_values("rule")
+    assert pd.read_csv(out.stages).wall_total_s.sum() == 50.0
 
 
 def test_the_pipelines_own_patterns_attribute_sample_records():

@@ -238,20 +238,19 @@ CONTRAST_COLUMNS = (("paper_sim", "paper sim."), ("paper_calc", "paper calc."), 
 def contrast_summary(table, velocities=(500.0, 1200.0)) -> list:
     """Markdown lines: the nose-shape contrasts at the given velocities, every source side by side.
 
-    table: rows of ``figures/nose_contrasts_table.csv`` (ratio and gain per source, the
-    cavity variants' range).
+    table: rows of ``figures/nose_contrasts_table.csv`` (ratio and gain per source). The cavity level's calibration
+    variants are a study of their own (figures/cavity_variant_contrasts.csv, `make studies`).
     """
     head = " | ".join(label for _, label in CONTRAST_COLUMNS)
     lines = ["## Nose-shape contrasts: the paper's conclusions (figures/nose_contrasts_table.csv)", "",
              "Depth ratios; every level except the stated-S Eq 9 is calibrated on DO1, so these contrasts, not the "
-             "absolute depths, are what a calibration cannot set. Cavity variants: the range over the calibration "
-             "variants of figures/cavity_table3_sensitivity.csv.", "",
-             f"| contrast | v (m/s) | {head} | cavity variants |", "|---|---|" + "---|" * (len(CONTRAST_COLUMNS) + 1)]
+             "absolute depths, are what a calibration cannot set. Their range over the cavity level's calibration "
+             "variants is the study figures/cavity_variant_contrasts.csv.", "",
+             f"| contrast | v (m/s) | {head} |", "|---|---|" + "---|" * len(CONTRAST_COLUMNS)]
     for r in table:
         if r["velocity"] in velocities:
             cells = " | ".join(f"{r[f'{k}_ratio']:.3f}" for k, _ in CONTRAST_COLUMNS)
-            lines.append(f"| {r['contrast']} | {r['velocity']:.0f} | {cells} | "
-                         f"{r['cavity_variants_min_ratio']:.3f}-{r['cavity_variants_max_ratio']:.3f} |")
+            lines.append(f"| {r['contrast']} | {r['velocity']:.0f} | {cells} |")
     return lines + [""]
 
 
@@ -405,7 +404,7 @@ def level_rows(refs, cells, shots, level, calibration):
     return rows
 
 
-def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
+def cavity_rows(refs, table3, cavity, do1_depth, scale):
     """Cavity level: Table 3's simulation column, the 1200 m/s gains, Fig 14, Fig 12.
 
     table3: rows with velocity_ms, nose, cavity_m; cavity: rows of the cavity
@@ -417,10 +416,6 @@ def cavity_rows(refs, table3, cavity, do1_depth, scale, erosion_strain=None):
     ref = R["table2.dop"]
     rows.append(_row(ref, "dop", f"DO1 (cavity level; strength scale {scale:.4g} calibrated to it)", do1_depth,
                      "not-derivable"))
-    if erosion_strain is not None:
-        rows.append(unstated(R["table1.fs"], erosion_strain,
-                             case="cavity level: plastic strain beyond which the target carries no deviatoric stress; "
-                                  "calibrated on DO1 (the paper's fs erodes elements of its unstated 3-D mesh)"))
     return rows
 
 

@@ -133,3 +133,25 @@ def fe_scene_shots(folder, schema_path) -> dict:
         data = read_scene(path, schema_path, ("fe",))
         shots[path.stem] = [(nose, f"{v:g}") for v in velocities(data["velocities"]) for nose in data["noses"]]
     return shots
+
+
+def end_with_parent(poll_s=1.0, grace_s=5.0):
+    """End this process when the process that started it ends (a Snakemake job whose Snakemake was killed, even by
+    SIGKILL, which it cannot pass on): a daemon thread polls the parent; once it is gone, SIGTERM to this process
+    (the default action ends it at once; the writes of the package are atomic, so no half-written output stays),
+    and SIGKILL after ``grace_s`` if that did not end it."""
+    import os
+    import signal
+    import threading
+    import time
+
+    parent = os.getppid()
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(poll_s)
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(grace_s)
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    threading.Thread(target=watch, name="end-with-parent", daemon=True).start()

@@ -1,6 +1,7 @@
 # The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles,
 # or a convergence or band profile of fe_convergence.profiles, fe_band.bands);
-# one job per shot (FE runs use both cores: threads 2).
+# one job per shot (FE runs use both cores: threads 2). FE_OUTPUTS are the paper's (rule all); the rules from
+# fe_mesh_study on (mesh study, contrast convergence, bands, ensembles, rear face, moving window) are studies.
 
 FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
 
@@ -329,5 +330,3 @@ rule fe_window_study:
     log: "results/logs/fe_window_study_{profile}.log",
     script: "../scripts/run_task.py"
 
-
-FE_OUTPUTS += ["window.csv", "window_summary.csv"]

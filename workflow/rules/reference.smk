@@ -19,7 +19,6 @@ rule diff:
         cavity_table3="results/scenes/cavity/table3.csv",
         cavity_do1="results/scenes/cavity/do1.csv",
         cal_cavity="results/calibration/cavity_do1.json",
-        sensitivity="figures/cavity_table3_sensitivity.csv",
         contrasts="figures/nose_contrasts.csv",
         contrast_table="figures/nose_contrasts_table.csv",
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
@@ -38,4 +37,16 @@ rule reproduce_check:
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/reproduce_check.tsv"
     log: "results/logs/reproduce_check.log",
+    script: "../scripts/run_task.py"
+
+
+# The studies' reproduction check (`make check-studies`): their committed outputs against a rebuild.
+rule reproduce_check_studies:
+    input: **task("tasks.reference"), outputs=list(CHECK_STUDIES),
+    output: report="results/check/reproduce_check_studies.txt",
+    params: check={**config["check"], "outputs": CHECK_STUDIES},
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/reproduce_check_studies.tsv"
+    log: "results/logs/reproduce_check_studies.log",
     script: "../scripts/run_task.py"

@@ -1,11 +1,14 @@
 """Run the task of the calling Snakemake rule (the function of the rule's name in its task module).
 
-Output goes both to the terminal and to the rule's log file.
+Output goes both to the terminal and to the rule's log file. The job ends when its Snakemake ends, even when
+Snakemake was killed (pipeline.end_with_parent): an orphaned job never writes its outputs later.
 """
 import contextlib
 import sys
 
-from penetration.pipeline import run
+from penetration.pipeline import end_with_parent, run
+
+end_with_parent()
 
 
 class Tee:

@@ -17,7 +17,7 @@ LINES = {("analytic", "Eq 9, S calibrated on DO1"): dict(color="tab:blue", ls="-
 
 
 def wide_table(data):
-    """One row per (contrast, velocity) at Table 3's velocities: each source's ratio and gain, the variants' range."""
+    """One row per (contrast, velocity) at Table 3's velocities: each source's ratio and gain."""
     t3 = data[data.source == "table3"]
     out = t3[["contrast", "velocity"]].drop_duplicates().reset_index(drop=True)
     idx = pd.MultiIndex.from_frame(out[["contrast", "velocity"]])
@@ -32,10 +32,6 @@ def wide_table(data):
         g = rows.set_index(["contrast", "velocity"])
         out[f"{name}_ratio"] = g.ratio.reindex(idx).to_numpy()
         out[f"{name}_gain_m"] = g.gain_m.reindex(idx).to_numpy()
-    var = t3[t3.level == "cavity variant"].groupby(["contrast", "velocity"])
-    for stat in ("min", "max"):
-        out[f"cavity_variants_{stat}_ratio"] = var.ratio.agg(stat).reindex(idx).to_numpy()
-        out[f"cavity_variants_{stat}_gain_m"] = var.gain_m.agg(stat).reindex(idx).to_numpy()
     return out
 
 
@@ -53,10 +49,6 @@ def nose_contrasts(inputs, outputs, params):
         for (level, variant), style in LINES.items():
             g = d[(d.source == "fig15") & (d.level == level) & (d.variant == variant)]
             ax.plot(g.velocity, g.ratio, label=f"{level}: {variant}", **style)
-        var = t3[(t3.contrast == name) & (t3.level == "cavity variant")].groupby("velocity").ratio
-        lo, hi = var.min(), var.max()
-        ax.vlines(lo.index, lo, hi, color="tab:green", lw=5, alpha=0.3,
-                  label="cavity level: range over the calibration variants")
         st = t3[(t3.contrast == name) & (t3.variant == "Eq 9, S = 72 fc^-0.5")]
         ax.plot(st.velocity, st.ratio, "s", mfc="none", color="tab:blue", label="Eq 9, S = 72 fc^-0.5 (Table 3 cells)")
         for variant, style in (("simulation (LS-DYNA, fs calibrated on DO1)", PAPER_STYLE),

@@ -42,13 +42,6 @@ def _bands_dict(path, noses_table):
     return out
 
 
-def _erosion_fit(path):
-    """The erosion_strain calibrated on DO1 in the cavity-level sensitivity table (None if absent)."""
-    t = pd.read_csv(path)
-    t = t[t.calibrated == "erosion_strain"]
-    return float(t.value.iloc[0]) if len(t) else None
-
-
 def _model_rows(refs, inputs):
     """Diff rows of the DOP and simulation stages: Table 3, DO1, Figs 1, 8, 9, 15."""
     fit = load_json(inputs.fit_calc)
@@ -69,7 +62,7 @@ def _model_rows(refs, inputs):
                                    calibrated_pd)
             + diff_rows.cavity_rows(refs, table3, pd.read_csv(inputs.cavity_table3).to_dict("records"),
                                     float(pd.read_csv(inputs.cavity_do1).cavity_dop.iloc[0]),
-                                    load_json(inputs.cal_cavity)["strength_scale"], _erosion_fit(inputs.sensitivity))
+                                    load_json(inputs.cal_cavity)["strength_scale"])
             + diff_rows.contrast_rows(refs, pd.read_csv(inputs.contrasts).to_dict("records")))
 
 
@@ -225,16 +218,12 @@ def _gap(x, y, rtol, atol, scale, decades):
     return gap, allowed, np.where(log, "decades apart", "|difference|")
 
 
-def checked_outputs(check, profiles, bands=()):
-    """The check's output specs by path for the FE mesh profiles built: a ``{profile}`` entry stands for each of
-    ``profiles``, and the ``full_only`` entries join when ``full`` is among them, a ``{band}`` one for each of
-    ``bands`` (the band profiles of fe_band)."""
-    out = {path.format(profile=p): spec for path, spec in check["outputs"].items()
-           for p in (profiles if "{profile}" in path else [None])}
-    if "full" in profiles:
-        out.update({path.format(band=b): spec for path, spec in check["full_only"].items()
-                    for b in (bands if "{band}" in path else [None])})
-    return out
+def checked_outputs(check, profiles, bands=(), section="outputs"):
+    """The output specs by path of one section of the check (``outputs``: the paper's target; ``studies``: the
+    studies'): a ``{profile}`` entry stands for each of ``profiles``, a ``{band}`` one for each of ``bands`` (the band
+    profiles of fe_band)."""
+    return {path.format(profile=p, band=b): spec for path, spec in check[section].items()
+            for p in (profiles if "{profile}" in path else [None]) for b in (bands if "{band}" in path else [None])}
 
 
 def _committed(path):
@@ -250,7 +239,7 @@ def reproduction_problems(outputs, diff_path, check):
     """(problems, number of files compared): drifted output CSVs and diff rows that lost their agreement.
 
     ``outputs``: the paths to compare (keys of ``check["outputs"]``); ``check``:
-    the config's check section (factor, precision classes, outputs).
+    the config's check section (factor, precision classes, outputs); ``diff_path``: None for the studies (no diff).
     """
     problems, compared = [], 0
     for path in outputs:
@@ -262,7 +251,7 @@ def reproduction_problems(outputs, diff_path, check):
         why = compare(new, old, check["outputs"][path], check)
         if why:
             problems.append(f"{path}: no longer matches the committed file: {why}")
-    old = _committed(diff_path)
+    old = _committed(diff_path) if diff_path is not None else None
     if old is not None:
         key = ["item", "quantity", "case"]
         was = pd.read_csv(stdio.StringIO(old))
@@ -288,4 +277,16 @@ def reproduce_check(inputs, outputs, params):
     print("\n".join(report))
     if problems:
         raise SystemExit(f"reproduction check failed: {len(problems)} problem(s)")
+    write_text(outputs.report, "\n".join(report) + "\n")
+
+
+@task
+def reproduce_check_studies(inputs, outputs, params):
+    """Fail when a committed output CSV of the studies has drifted beyond its tolerance."""
+    problems, compared = reproduction_problems(list(params.check["outputs"]), None, params.check)
+    report = [f"compared {compared} committed CSV files of the studies (tolerance factor {params.check['factor']:g} on "
+              f"the precision class of each column, config check.studies)"] + problems
+    print("\n".join(report))
+    if problems:
+        raise SystemExit(f"reproduction check of the studies failed: {len(problems)} problem(s)")
     write_text(outputs.report, "\n".join(report) + "\n")

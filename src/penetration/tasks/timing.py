@@ -5,6 +5,10 @@ its name matches that rule's benchmark pattern, so records left by renamed or re
 of a current rule for wildcard values no longer built, such as a removed velocity, are not: they match). The
 records of the rules that run after this one (the report, this rule itself) are those of their previous run.
 The sums are of job wall times: with two jobs at a time, a rebuild takes less than their sum.
+
+The per-rule file accumulates: a (stage, rule) with no record in this build (a study's, after a rebuild of the
+paper alone) keeps its row from the file as it was, so that the records of both targets stay there for the
+estimates of time left (``penetration.build``).
 """
 from __future__ import annotations
 
@@ -85,10 +89,21 @@ def pipeline_timing(inputs, outputs, params):
     per_rule = (jobs.groupby(["stage", "rule"]).agg(jobs=("wall_s", "size"), wall_total_s=("wall_s", "sum"),
                                                     wall_min_s=("wall_s", "min"), wall_max_s=("wall_s", "max"),
                                                     max_rss_mb=("max_rss_mb", "max")).reset_index())
-    per_stage = (jobs.groupby("stage").agg(jobs=("wall_s", "size"), wall_total_s=("wall_s", "sum"),
-                                          max_rss_mb=("max_rss_mb", "max")).reset_index())
+    per_rule = merge_records(per_rule, Path(outputs.rules), set(patterns))
+    per_stage = (per_rule.groupby("stage").agg(jobs=("jobs", "sum"), wall_total_s=("wall_total_s", "sum"),
+                                              max_rss_mb=("max_rss_mb", "max")).reset_index())
     per_stage["wall_total_min"] = per_stage.wall_total_s / 60
     write_csv(per_rule, outputs.rules)
     write_csv(per_stage, outputs.stages)
     for r in per_stage.itertuples():
         print(f"{r.stage:28s} {r.jobs:4d} jobs {r.wall_total_min:7.1f} min", flush=True)
+
+
+def merge_records(new: pd.DataFrame, previous: Path, rules: set) -> pd.DataFrame:
+    """``new`` per-rule rows, with the rows of ``previous`` (the file as it was) for the (stage, rule) pairs that have
+    no new record, when their rule still exists; sorted by stage and rule."""
+    if not previous.is_file():
+        return new
+    old = pd.read_csv(previous)
+    keep = old[old.rule.isin(rules) & ~old.set_index(["stage", "rule"]).index.isin(new.set_index(["stage", "rule"]).index)]
+    return pd.concat([keep, new], ignore_index=True).sort_values(["stage", "rule"]).reset_index(drop=True)[list(new.columns)]

@@ -1,0 +1,118 @@
+"""Progress with an end (penetration.build) and jobs that end with their Snakemake (pipeline.end_with_parent)."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from penetration.build import Estimate, Progress, _profile
+
+ROOT = Path(__file__).resolve().parents[1]
+ENV = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+
+LOG = """\
+Job stats:
+job         count
+--------  -------
+fe_shot         3
+fig01           1
+all             1
+total           5
+
+[Wed Nov 25 22:26:22 2026]
+localrule fe_shot:
+    output: results/fe/ci/table3/crh3_500.json
+    jobid: 7
+    reason: Missing output files
+    wildcards: profile=ci, scene=table3, nose=crh3, velocity=500
+    threads: 2
+[Wed Nov 25 22:26:23 2026]
+Finished jobid: 7 (Rule: fe_shot)
+"""
+
+
+def test_time_left_is_the_records_of_the_jobs_left_scaled_by_the_speed_so_far():
+    records = {("fe [ci]", "fe_shot"): (2, 4.0), ("fe [full]", "fe_shot"): (1, 20.0), ("figures", "fig01"): (1, 1.0)}
+    est = Estimate(records, profile="ci")
+    assert est.job("fe_shot") == 2.0 and est.job("fe_shot", "full") == 20.0 and est.job("fig01") == 1.0
+    assert est.job("all") == est.median          # no record: the median job
+    p = Progress(est, start=0.0)
+    notes = [p.feed(line, now=10.0) for line in LOG.splitlines()]
+    assert p.counts == {"fe_shot": 3, "fig01": 1, "all": 1}
+    assert p.started["7"] == ("fe_shot", "ci")
+    # one ci shot done (2 s expected) in 10 s: speed 5; left: 2 shots (4 s) + fig01 (1 s) + all (median 2 s) = 7 s
+    assert notes[-1] == "[progress] 1/5 jobs done, 10 s elapsed, about 35 s left"
+    assert [n for n in notes[:-1] if n] == []
+
+
+def test_the_profile_comes_from_the_command_line_or_the_config():
+    assert _profile(["-c2", "all", "--config", "fe_profile=ci"]) == "ci"
+    assert _profile(["-c2"]) in ("full", "ci")
+
+
+def test_a_job_ends_when_its_parent_is_killed(tmp_path):
+    """The parent (Snakemake's place) is SIGKILLed while its child job runs: the child ends within seconds and never
+    writes the output it would have written later."""
+    marker = tmp_path / "late_output"
+    child = textwrap.dedent(f"""
+        import time
+        from penetration.pipeline import end_with_parent
+        end_with_parent(poll_s=0.05)
+        time.sleep(6)
+        open({str(marker)!r}, "w").write("late")
+    """)
+    parent = textwrap.dedent(f"""
+        import subprocess, sys, time
+        p = subprocess.Popen([sys.executable, "-c", {child!r}])
+        print(p.pid, flush=True)
+        time.sleep(60)
+    """)
+    proc = subprocess.Popen([sys.executable, "-c", parent], stdout=subprocess.PIPE, text=True, env=ENV)
+    pid = int(proc.stdout.readline())
+    time.sleep(1.0)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    for _ in range(100):
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.05)
+    else:
+        raise AssertionError("the orphaned child is still running")
+    time.sleep(6)
+    assert not marker.exists()
+
+
+@pytest.mark.slow
+def test_killing_the_build_ends_snakemake_and_its_jobs(tmp_path):
+    (tmp_path / "Snakefile").write_text(textwrap.dedent("""
+        rule all:
+            input: "out.txt"
+        rule slow:
+            output: "out.txt"
+            shell: "echo $$ > pid.txt; sleep 60; touch {output}"
+    """))
+    proc = subprocess.Popen([sys.executable, "-m", "penetration.build", "-c1"], cwd=tmp_path, env=ENV,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    pid_file = tmp_path / "pid.txt"
+    for _ in range(600):
+        if pid_file.exists() and pid_file.read_text().strip():
+            break
+        time.sleep(0.05)
+    job = int(pid_file.read_text())
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=30) != 0
+    for _ in range(200):
+        try:
+            os.kill(job, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.05)
+    else:
+        raise AssertionError("the job outlived the build")
+    assert not (tmp_path / "out.txt").exists()
