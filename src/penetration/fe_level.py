@@ -36,22 +36,35 @@ def with_failure_strain(settings: Settings, fs):
 
 
 def calibrate_failure_strain(nose, mass, velocity, depth, material, settings: Settings, target: TargetSpec = TargetSpec(),
-                             bracket=(0.2, 3.0), tol_m=0.02, max_runs=14, expected_depth=None, log=print):
-    """fs making the FE depth of the shot equal ``depth``; returns fs, the runs and the residual."""
+                             bracket=(0.2, 3.0), tol_m=0.02, max_runs=14, expected_depth=None, log=print, memo=None):
+    """fs making the FE depth of the shot equal ``depth``; returns fs, the runs and the residual.
+
+    ``memo``: a mapping of finished trials (fs -> the run's record) kept by the caller across interruptions; a trial
+    found there is not run again (the iteration is deterministic, so an interrupted calibration resumes where it
+    stopped). The caller keys it by everything a trial depends on."""
     runs = []
 
     def miss(log_fs):
         fs = math.exp(log_fs)
-        # one attempt: a run that reaches the bottom of the domain is deeper than the target already
-        r = run_shot(nose, mass, velocity, material, with_failure_strain(settings, fs), target,
-                     expected_depth=expected_depth or 1.3 * depth, log=log, max_attempts=1)
-        sm = r.summary()
-        runs.append({"fs": fs, "depth_m": r.depth, "wall_time_s": r.wall_time, "status": r.status,
-                     "energy_error_max": sm["energy_error_max"], "peak_deceleration_m_s2": r.peak_deceleration,
-                     "elements": r.elements, "steps": r.steps})
-        if log:
-            log(f"fs {fs:.5f}: depth {r.depth:.4f} m ({r.status}, {r.wall_time:.1f} s)")
-        return r.depth - depth
+        key = repr(fs)
+        if memo is not None and key in memo:
+            rec = dict(memo[key])
+            if log:
+                log(f"fs {fs:.5f}: depth {rec['depth_m']:.4f} m ({rec['status']}; a finished trial, not run again)")
+        else:
+            # one attempt: a run that reaches the bottom of the domain is deeper than the target already
+            r = run_shot(nose, mass, velocity, material, with_failure_strain(settings, fs), target,
+                         expected_depth=expected_depth or 1.3 * depth, log=log, max_attempts=1)
+            sm = r.summary()
+            rec = {"fs": fs, "depth_m": r.depth, "wall_time_s": r.wall_time, "status": r.status,
+                   "energy_error_max": sm["energy_error_max"], "peak_deceleration_m_s2": r.peak_deceleration,
+                   "elements": r.elements, "steps": r.steps}
+            if memo is not None:
+                memo[key] = rec
+            if log:
+                log(f"fs {fs:.5f}: depth {r.depth:.4f} m ({r.status}, {r.wall_time:.1f} s)")
+        runs.append(rec)
+        return rec["depth_m"] - depth
 
     lo, hi = (math.log(b) for b in bracket)
     f_lo, f_hi = miss(lo), miss(hi)

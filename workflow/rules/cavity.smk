@@ -56,3 +56,14 @@ rule cavity_verification:
     benchmark: "results/benchmarks/cavity_verification.tsv"
     log: "results/logs/cavity_verification.log",
     script: "../scripts/run_task.py"
+
+
+# The calibration the cavity level of the command line carries over, committed (it runs from a fresh clone).
+rule cavity_calibration_record:
+    input: **task("tasks.cavity"), cal="results/calibration/cavity_do1.json",
+    output: csv="figures/calibration_cavity_do1.csv",
+    threads: 1
+    resources: mem_mb=500, runtime=2
+    benchmark: "results/benchmarks/cavity_calibration_record.tsv"
+    log: "results/logs/cavity_calibration_record.log",
+    script: "../scripts/run_task.py"

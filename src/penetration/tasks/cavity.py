@@ -160,3 +160,19 @@ def scene_cavity(inputs, outputs, params):
                                       "deceleration": tr.deceleration}))
     write_csv(pd.DataFrame(rows), outputs.dop)
     write_csv(pd.concat(hist, ignore_index=True), outputs.histories)
+
+
+def calibration_row(cal: dict, value_key: str, source: str) -> dict:
+    """One row of a shipped calibration: the fitted quantity, its value, its data and its residual, and the file it
+    comes from (the levels of the command line read these committed rows, so that they run from a fresh clone)."""
+    data = cal["data"]
+    return {"calibration": cal["calibration"], "fitted_quantity": cal["fitted_quantity"], "parameter": value_key,
+            "value": cal[value_key], "residual_m": cal["residual_m"], "relative_residual": cal["relative_residual"],
+            "measured_depth_m": data["measured_depth"], "striking_velocity_ms": data["vs"], "mass_kg": data["mass"],
+            "nose": data["nose"], "source": source}
+
+
+@task
+def cavity_calibration_record(inputs, outputs, params):
+    """The cavity level's DO1 calibration as a committed output (figures/calibration_cavity_do1.csv)."""
+    write_csv(pd.DataFrame([calibration_row(load_json(inputs.cal), "strength_scale", str(inputs.cal))]), outputs.csv)

@@ -7,8 +7,11 @@ configured in ``fe.profiles``.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
+import json
 import math
 import time
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -21,7 +24,7 @@ from ..fe.shot import BLOCK_RADIUS, Settings, TargetSpec, binned, lowpass, run_s
 from ..fe.solver import Controls
 from ..fe_level import calibrate_failure_strain, expected_depth, with_failure_strain
 from ..io import load_json, read_inference, task, write_csv, write_json
-from .cavity import configured_hjc, do1_shot
+from .cavity import calibration_row, configured_hjc, do1_shot
 from .common import scene_from_inputs
 
 FE = ("fe",)
@@ -54,6 +57,37 @@ def _check_table1_target(sc, refs):
                              f"{want} (the HJC set of Table 1 exists for this concrete only)")
 
 
+class TrialMemo(dict):
+    """The finished trials of a calibration (fs -> its run's record), appended to a JSON-lines file as each ends, so
+    that an interrupted calibration resumes where it stopped. The file's name carries a digest of everything a
+    trial depends on (the shot, the material, the mesh and run settings, the target, and the sources of the FE
+    modules), so that a change to any of them starts afresh."""
+
+    def __init__(self, folder, *definition):
+        super().__init__()
+        from .. import numba_cache
+        fe_sources = sorted((numba_cache.PACKAGE / "fe").glob("*.py")) + [numba_cache.PACKAGE / "fe_level.py",
+                                                                         numba_cache.PACKAGE / "hjc.py"]
+        h = hashlib.sha256(repr(definition).encode())
+        for f in fe_sources:
+            h.update(f.read_bytes())
+        self.path = Path(folder) / f"trials_{h.hexdigest()[:16]}.jsonl"
+        if self.path.is_file():
+            for line in self.path.read_text().splitlines():
+                try:
+                    rec = json.loads(line)
+                except json.JSONDecodeError:
+                    continue   # a line cut short by a kill
+                super().__setitem__(repr(rec["fs"]), rec)
+
+    def __setitem__(self, key, rec):
+        super().__setitem__(key, rec)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        with open(self.path, "a") as fh:
+            fh.write(json.dumps(rec) + "\n")
+            fh.flush()
+
+
 @task
 def calibrate_fe_do1(inputs, outputs, params):
     """Failure strain fs making the FE DO1 depth equal the measured 5.1 m, at one element size."""
@@ -67,8 +101,12 @@ def calibrate_fe_do1(inputs, outputs, params):
     t0 = time.perf_counter()
     target = TargetSpec("semi_infinite", cfg["target_radius"])
     rho, fc = refs["table1.rho"].si, refs["table1.fc"].si
+    expected = expected_depth(nose, mass, vs, fc, rho)
+    memo = TrialMemo(Path(outputs.json).parent / "trials", nose, mass, vs, depth, material, settings, target, expected)
+    if memo:
+        print(f"{len(memo)} finished trials of this calibration found in {memo.path}: not run again", flush=True)
     fit = calibrate_failure_strain(nose, mass, vs, depth, material, settings, target, tuple(cfg["fs_bracket"]),
-                                   cfg["calibration_tol_m"], expected_depth=expected_depth(nose, mass, vs, fc, rho))
+                                   cfg["calibration_tol_m"], expected_depth=expected, memo=memo)
     write_json({"calibration": "fe_do1", "fitted_quantity": "failure strain fs: erosion of an element once its "
                 "equivalent plastic strain reaches fs (the paper's calibrated 0.38 belongs to its own 3-D mesh; fs "
                 "is bound to the element size)",
@@ -199,3 +237,15 @@ def fe_nose_pressure(inputs, outputs, params):
     write_json({"steel_yield_pa_assumed": params.steel_yield, "element_size_m": settings.element_size,
                 "sampling": "-sigma_nn of live elements within 2.5 elements of the nose surface, every output interval",
                 "noses": rows}, outputs.json)
+
+
+@task
+def fe_calibration_record(inputs, outputs, params):
+    """The fe level's DO1 calibration at a profile's mesh as a committed output (figures/fe/{profile}/calibration_fe_do1.csv):
+    the failure strain, its mesh (element size, elements across the shank radius) and its residual."""
+    cal = load_json(inputs.cal)
+    row = calibration_row(cal, "fs", str(inputs.cal))
+    row.update({"profile": cal["profile"], "element_size_m": cal["element_size"],
+                "elements_across_radius": cal["elements_across_radius"], "converged": bool(cal["converged"]),
+                "trials": len(cal["runs"])})
+    write_csv(pd.DataFrame([row]), outputs.csv)
