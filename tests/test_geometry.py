@@ -111,5 +111,5 @@ def test_bad_parameters_name_the_field(kind, params, field):
 def test_non_monotone_table_names_the_row(tmp_path):
     path = tmp_path / "nose.csv"
     path.write_text("x,y\n0,0\n0.1,0.05\n0.2,0.04\n")
-    with pytest.raises(ParameterError, match="row 3"):
+    with pytest.raises(ParameterError, match="y in row 4 = 0.04 "):  # the header is row 1
         make_nose("table", path=str(path))

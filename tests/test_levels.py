@@ -90,13 +90,15 @@ def test_closed_form_time_and_peak_equal_the_integrated_trajectory(mass, radius,
 
 
 def test_shot_fields_are_checked_by_name():
-    for field, value in (("mass", 0.0), ("velocity", -1.0), ("fc", math.inf), ("density", 50.0)):
+    """A UserShot (SI) names the shot field of the shots CSV and the command line, in that field's unit."""
+    for field, value, name in (("mass", 0.0, "mass_kg"), ("velocity", -1.0, "velocity_ms"), ("fc", math.inf, "fc_MPa"),
+                               ("density", 50.0, "target_density_kgm3")):
         kw = dict(nose=Ogive(3.0, 0.07), mass=10.0, velocity=500.0, fc=40e6, density=2400.0)
         kw[field] = value
         with pytest.raises(ParameterError) as err:
             L.UserShot(**kw)
-        assert f"shot.{field}" in str(err.value) and "allowed" in str(err.value)
-    with pytest.raises(ParameterError, match="shot.length"):
+        assert f"shot.{name} = " in str(err.value) and "allowed" in str(err.value)
+    with pytest.raises(ParameterError, match="shot.length_m"):
         L.UserShot(Ogive(3.0, 0.07), 10.0, 500.0, 40e6, length=0.1)  # shorter than the nose (0.2417 m)
 
 
@@ -159,12 +161,12 @@ def test_fe_level_is_scale_invariant_without_the_rate_term(monkeypatch):
 
 
 def test_fe_level_needs_the_projectile_length():
-    with pytest.raises(ParameterError, match="shot.length"):
+    with pytest.raises(ParameterError, match="shot.length_m"):
         L.run(L.UserShot(Ogive(3.0, 0.05), 10.0, 500.0, 40e6), "fe", fe_context())
 
 
 # ------------------------------------------------------------------ command line
-SHOT = ("ogive", "psi=3", "radius=0.07", "mass=81.1", "velocity=835", "fc=48e6")
+SHOT = ("ogive", "psi=3", "diameter_m=0.14", "mass_kg=81.1", "velocity_ms=835", "fc_MPa=48")
 
 
 def test_dop_json_is_the_closed_form():
@@ -203,14 +205,14 @@ def test_keys_may_follow_the_options():
 
 
 @pytest.mark.parametrize("args,needle", [
-    (("dop", "ogive", "psi=3", "radius=0.07", "velocity=835", "fc=48e6"), "shot.mass"),
+    (("dop", "ogive", "psi=3", "diameter_m=0.14", "velocity_ms=835", "fc_MPa=48"), "shot.mass_kg"),
     (("dop", *SHOT, "--json", "--colour"), "unrecognized arguments: --colour"),
     (("dop", *SHOT, "--json", "stray"), "unrecognized arguments: stray"),
     (("dop", *SHOT, "--model", "fe", "psi=2"), "each key once (psi=3 is given already)"),
-    (("dop", *SHOT, "density=abc"), "shot.density"),
-    (("dop", *SHOT[:-1], "fc=500e6", "--model", "cavity", "--strength-scale", "0.6"), "shot.fc"),
+    (("dop", *SHOT, "target_density_kgm3=abc"), "shot.target_density_kgm3"),
+    (("dop", *SHOT[:-1], "fc_MPa=500", "--model", "cavity", "--strength-scale", "0.6"), "shot.fc_MPa"),
     (("dop", *SHOT, "--model", "cavity", "--strength-scale", "-1"), "--strength-scale"),
-    (("dop", *SHOT, "--model", "fe", "--failure-strain", "0.7"), "shot.length"),
+    (("dop", *SHOT, "--model", "fe", "--failure-strain", "0.7"), "shot.length_m"),
     (("simulate", *SHOT, "--out", "x.csv"), "analytic has no history"),
     (("dop", *SHOT, "colour=red"), "colour"),
 ])

@@ -14,6 +14,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+from penetration import levels as L
+from penetration.geometry import Cone, MinimumNstar
 from penetration.io import TargetError, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -29,6 +31,9 @@ def shots_file(tmp_path, text, name="shots.csv"):
     path = tmp_path / name
     path.write_text(text)
     return path
+
+
+SHOT = ("ogive", "psi=3", "diameter_m=0.14", "mass_kg=81.1", "velocity_ms=835", "fc_MPa=48")
 
 
 def header():
@@ -71,8 +76,165 @@ def test_predict_refuses_a_fifo_as_out(tmp_path, fifo):
 
 
 def test_simulate_refuses_a_fifo_as_out(fifo):
-    out = cli("simulate", "ogive", "psi=3", "radius=0.07", "mass=81.1", "velocity=835", "fc=48e6",
+    out = cli("simulate", *SHOT,
               "--model", "trajectory", "--out", str(fifo))
     assert out.returncode == 2, out.stderr
     assert out.stderr.startswith("error: ") and "--out" in out.stderr and "FIFO" in out.stderr
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)
+
+
+# ------------------------------------------------------- one vocabulary of shot inputs
+PROJECTILE = ("diameter_m=0.14", "mass_kg=81.1", "velocity_ms=835", "fc_MPa=48")
+
+
+@pytest.mark.parametrize("model", ["analytic", "trajectory"])
+@pytest.mark.parametrize("kind,nose", [("cone", Cone(0.07, 0.21)), ("minimum_nstar", MinimumNstar(0.07, 0.21))])
+def test_a_cone_and_a_minimum_nstar_nose_run_through_dop(kind, nose, model):
+    """The nose's own length key is the nose's; the projectile's is length_m (formerly the one key `length`)."""
+    out = cli("dop", kind, "length=0.21", *PROJECTILE, "length_m=1.13", "--model", model, "--json")
+    assert out.returncode == 0, out.stderr
+    want = L.run(L.UserShot(nose, 81.1, 835.0, 48e6, 2440.0, 1.13), model, L.Context())
+    assert json.loads(out.stdout)["depth_m"] == pytest.approx(want.depth_m, rel=1e-9)
+
+
+def _one_row_csv(tmp_path, **changes):
+    import csv
+    import io
+    head = header().split(",")
+    row = next(csv.reader(io.StringIO(good_row())))
+    for k, v in changes.items():
+        row[head.index(k)] = v
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerows([head, row])
+    return shots_file(tmp_path, buf.getvalue()), dict(zip(head, row))
+
+
+@pytest.mark.parametrize("model", ["analytic", "trajectory"])
+def test_dop_of_a_row_equals_predict_of_it(tmp_path, model):
+    path, row = _one_row_csv(tmp_path)
+    assert row["nose_shape"] == "ogive"
+    keys = [f"{k}={row[k]}" for k in ("crh", "diameter_m", "length_m", "mass_kg", "velocity_ms", "fc_MPa",
+                                      "target_density_kgm3")]
+    one = cli("dop", "ogive", *keys, "--model", model, "--json")
+    assert one.returncode == 0, one.stderr
+    many = cli("predict", str(path), "--model", model, "--out", str(tmp_path / "out.csv"))
+    assert many.returncode == 0, many.stderr
+    predicted = pd.read_csv(tmp_path / "out.csv").dop_pred_m.iloc[0]
+    assert float(f"{json.loads(one.stdout)['depth_m']:.6g}") == predicted
+
+
+@pytest.mark.parametrize("old,new,unit", [("mass=81.1", "mass_kg", "kg"), ("velocity=835", "velocity_ms", "m/s"),
+                                          ("fc=48e6", "fc_MPa", "MPa"), ("radius=0.07", "diameter_m", "m"),
+                                          ("density=2440", "target_density_kgm3", "kg/m^3"), ("length=1.13", "length_m", "m")])
+@pytest.mark.parametrize("command", ["dop", "simulate"])
+def test_former_keys_are_refused_with_the_new_key(tmp_path, command, old, new, unit):
+    key = old.split("=")[0]
+    keep = [k for k in (*SHOT[1:], "length_m=1.13") if not k.startswith(new + "=")]
+    out = cli(command, "ogive", *keep, old, "--model", "trajectory",
+              *(("--out", str(tmp_path / "h.csv")) if command == "simulate" else ()))
+    assert out.returncode == 2 and out.stdout == ""
+    assert f"{key} is not a shot key: give {new} ({unit})" in out.stderr
+    assert not (tmp_path / "h.csv").exists()
+
+
+def test_psi_and_crh_together_are_refused():
+    out = cli("dop", *SHOT, "crh=3")
+    assert out.returncode == 2 and "psi or crh, not both" in out.stderr
+
+
+def test_help_lists_the_one_table_of_shot_fields():
+    from penetration.shots import SHOT_FIELDS
+    for command in ("dop", "simulate", "predict"):
+        out = cli(command, "--help")
+        assert out.returncode == 0
+        for name, f in SHOT_FIELDS.items():
+            assert name in out.stdout and f.allowed in " ".join(out.stdout.split()), (command, name)
+    predict = " ".join(cli("predict", "--help").stdout.split())
+    assert "nose_shape" in predict and "crh" in predict
+
+
+def test_user_shot_ranges_are_the_csv_ranges():
+    from penetration.shots import SHOT_FIELDS
+    for attr, (lo, hi) in L.SHOT_RANGES.items():
+        f = next(f for f in SHOT_FIELDS.values() if f.attribute == attr)
+        assert (lo, hi) == (f.lo * f.si, f.hi * f.si)
+
+
+# ------------------------------------------------------- numbers in one form, CSVs read for sure
+@pytest.mark.parametrize("text", ["3_0", "1_000", "inf", "-inf", "nan", "Infinity", " 3", "3 ", "1e999", "٣"])
+def test_a_number_float_would_take_is_refused_on_the_command_line(text):
+    for args in (("nstar", "ogive", f"psi={text}", "radius=0.07"), ("dop", "ogive", f"psi={text}", *PROJECTILE),
+                 ("dop", *SHOT, f"target_density_kgm3={text}")):
+        out = cli(*args)
+        assert out.returncode == 2 and "a plain decimal number" in out.stderr and out.stdout == "", (args, out.stderr)
+
+
+@pytest.mark.parametrize("text", ["3_0", "1_000", "inf", "nan", " 48", "48 "])
+def test_a_number_float_would_take_is_refused_in_a_shots_row(tmp_path, text):
+    path, _ = _one_row_csv(tmp_path, fc_MPa=text)
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 2 and "row 2: fc_MPa" in out.stderr and "a plain decimal number" in out.stderr
+    assert not (tmp_path / "out.csv").exists()
+
+
+def test_an_option_number_with_an_underscore_is_refused():
+    out = cli("dop", *SHOT, "--model", "cavity", "--strength-scale", "0_6")
+    assert out.returncode == 2 and "--strength-scale" in out.stderr and "a plain decimal number" in out.stderr
+
+
+def test_a_column_given_twice_in_a_shots_file_is_refused(tmp_path):
+    head = header()
+    path = shots_file(tmp_path, f"{head},fc_MPa\n{good_row()},480\n")
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 2 and "column 'fc_MPa' is given twice" in out.stderr
+    assert not (tmp_path / "out.csv").exists()
+
+
+def nose_table(tmp_path, text, encoding="utf-8"):
+    path = tmp_path / "nose.csv"
+    path.write_text(text, encoding=encoding)
+    return path
+
+
+@pytest.mark.parametrize("text,needle", [
+    ("x,y\n0,0\n0.1,0.07,0.5\n", "row 3 = ['0.1', '0.07', '0.5'] is not allowed: 2 fields"),
+    ("x,y\n0,0\n0.1\n", "row 3 = ['0.1'] is not allowed: 2 fields"),
+    ("x,y\n", "at least 2 rows"),
+    ("x,y\n0,0\n", "at least 2 rows"),
+    ("x,y,x\n0,0,0\n0.1,0.07,0.1\n", "'x' is given twice"),
+    ("x,y\n0,0\n0.1,3_0\n", "y in row 3 = '3_0'"),
+    ("x,y\n0,0\n0.1,nan\n", "y in row 3 = 'nan'"),
+])
+def test_nose_table_refusals_name_the_row_or_what_is_needed(tmp_path, text, needle):
+    out = cli("nstar", "table", f"path={nose_table(tmp_path, text)}")
+    assert out.returncode == 2 and needle in out.stderr and out.stdout == "", out.stderr
+
+
+def test_nose_table_monotonicity_names_the_row_that_decreases(tmp_path):
+    """Rows counted as predict counts them (the header is row 1): the fourth row's y falls below the third's."""
+    path = nose_table(tmp_path, "x,y\n0,0\n0.1,0.05\n0.2,0.04\n0.3,0.07\n")
+    out = cli("nstar", "table", f"path={path}")
+    assert out.returncode == 2 and "y in row 4 = 0.04 is not allowed" in out.stderr and "row 3 has y = 0.05" in out.stderr
+
+
+def test_a_byte_order_mark_is_read_by_nstar_table_and_predict(tmp_path):
+    text = "x,y\n0,0\n0.1,0.07\n"
+    plain = cli("nstar", "table", f"path={nose_table(tmp_path, text)}", "--json")
+    marked = cli("nstar", "table", f"path={nose_table(tmp_path, chr(0xFEFF) + text)}", "--json")
+    assert plain.returncode == marked.returncode == 0, marked.stderr
+    assert json.loads(marked.stdout) == json.loads(plain.stdout)
+    path = shots_file(tmp_path, f"\ufeff{header()}\n{good_row()}\n")
+    out = cli("predict", str(path), "--out", str(tmp_path / "out.csv"))
+    assert out.returncode == 0, out.stderr
+    assert pd.read_csv(tmp_path / "out.csv").columns[0] == "shot_id"  # the mark is not part of the first name
+
+
+@pytest.mark.parametrize("value", ["1_0e-8", " 1e-8", "1e-8 "])
+def test_a_config_override_number_float_would_take_is_refused(monkeypatch, value):
+    import yaml
+    monkeypatch.chdir(ROOT)
+    from penetration.config import ConfigError, check_config
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    cfg["trajectory"] = {"rtol": value}
+    with pytest.raises(ConfigError, match="trajectory.rtol"):
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")

@@ -1,20 +1,24 @@
 """Command line: ``python -m penetration nstar|dop|simulate|predict ...``.
 
 ``nstar`` prints N*, nose length and nose volume (SI). ``dop`` and
-``simulate`` run one shot (a nose of ``nstar``'s kinds and the shot's keys)
-at any level of the fidelity ladder; ``predict`` runs a CSV of shots. Errors
-name the key and the allowed range on stderr and exit with status 2.
+``simulate`` run one shot at any level of the fidelity ladder: a nose of
+``nstar``'s kinds (its keys without radius) and the shot keys, which are the
+columns of ``predict``'s shots CSV (shots.SHOT_FIELDS, units in the names);
+``predict`` runs a CSV of shots. Errors name the key and the allowed range
+on stderr and exit with status 2.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import sys
+import textwrap
 import time
 from pathlib import Path
 
 from .geometry import NOSES, ParameterError, make_nose
 from .nstar import nstar
+from .units import NUMBER_FORM, parse_number
 
 KEYS_HELP = {
     "ogive": "psi=CRH radius=a [tip_radius=r]",
@@ -24,13 +28,16 @@ KEYS_HELP = {
     "minimum_nstar": "radius=a length=b",
     "table": "path=FILE.csv (columns x,y in metres)",
 }
+# nose keys of dop and simulate: nstar's without radius (the shank radius is diameter_m/2); levels.nose_keys
+SHOT_NOSE_HELP = {
+    "ogive": "psi=CRH or crh=CRH (the shots CSV's name) [tip_radius=m]",
+    "cone": "length=m (the nose's) [tip_radius=m]",
+    "flat": "(no keys)",
+    "double_ogive": "S1= S2= a1= a2= (m) [alpha=rad] [tip_length=m]",
+    "minimum_nstar": "length=m (the nose's)",
+    "table": "path=FILE.csv (columns x,y in metres; the last y is the shank radius, diameter_m may be left out)",
+}
 LEVEL_CHOICES = ["analytic", "trajectory", "cavity", "fe"]
-# shot keys of dop and simulate (SI): name -> (help, default)
-SHOT_KEYS = {"mass": ("projectile mass, kg (0 < m <= 1e6)", None),
-             "velocity": ("striking velocity, m/s (0 < v <= 1e4)", None),
-             "fc": ("concrete compressive strength, Pa (0.5e6 < fc <= 2e9; 20e6-200e6 at the cavity and fe levels)", None),
-             "density": ("concrete density, kg/m^3 (100 < rho <= 2e4)", "2440"),
-             "length": ("projectile length, m (nose and shank; needed by the fe level)", None)}
 LEVELS_EPILOG = (
     "levels: analytic (Eq 9 and its closed-form time and peak deceleration; ns-us per shot), trajectory (rigid-body "
     "ODE, crater + static + inertial; ms), cavity (HJC sigma_n(v) table of the shot's concrete driving the "
@@ -39,6 +46,14 @@ LEVELS_EPILOG = (
     "Table 1's HJC set to fc (levels.HJC_SCALING_RULE) and carry over the DO1 calibrations found under --root "
     "(results/calibration/cavity_do1.json, results/fe/PROFILE/calibration_h*.json) unless --strength-scale or "
     "--failure-strain is given.")
+
+
+def _option_number(text):
+    """An option's number, in the form of every number of the command line (units.NUMBER_FORM)."""
+    try:
+        return parse_number(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not allowed: {NUMBER_FORM}") from None
 
 
 def _level_options(p, model_help):
@@ -51,20 +66,37 @@ def _level_options(p, model_help):
     p.add_argument("--profile", choices=["full", "ci"], default="full",
                    help="FE mesh profile whose DO1 calibration the fe level carries over (default full: 8 elements "
                         "across the shank radius)")
-    p.add_argument("--strength-scale", type=float, default=None,
+    p.add_argument("--strength-scale", type=_option_number, default=None,
                    help="cavity level: factor on the HJC strength surface instead of the DO1 calibration (> 0)")
-    p.add_argument("--failure-strain", type=float, default=None,
+    p.add_argument("--failure-strain", type=_option_number, default=None,
                    help="fe level: erosion strain instead of the DO1 calibration (> 0)")
+
+
+def _wrap(text, indent=0):
+    """``text`` filled to 100 columns; lines after the first indented by ``indent``."""
+    return textwrap.fill(text, 100, subsequent_indent=" " * indent, break_on_hyphens=False)
+
+
+def _shot_keys_help():
+    """The shot keys of dop and simulate, from the one table of shot fields (shots.SHOT_FIELDS)."""
+    from .shots import SHOT_FIELDS
+    lines = []
+    for name, f in SHOT_FIELDS.items():
+        need = (f"default {f.default:g}" if f.default is not None else "required" if f.required and name != "diameter_m"
+                else "required except with a table nose" if name == "diameter_m" else "optional")
+        lines.append(_wrap(f"  {name + '=':<22}{f.what}, {f.allowed} ({need})", 24))
+    return "\n".join(lines)
 
 
 def _shot_parser(sub, name, help_text):
     p = sub.add_parser(name, help=help_text, formatter_class=argparse.RawDescriptionHelpFormatter,
-                       epilog="shot keys (SI):\n" + "\n".join(f"  {k}=  {h}" + (f" [default {d}]" if d else "")
-                                                              for k, (h, d) in SHOT_KEYS.items())
-                       + "\nnose kinds and keys (as nstar):\n" + "\n".join(f"  {k}: {v}" for k, v in KEYS_HELP.items())
-                       + "\n\n" + LEVELS_EPILOG)
+                       epilog=_wrap("shot keys (the columns of predict's shots CSV, units in the names; numbers as "
+                                    f"{NUMBER_FORM}):") + "\n" + _shot_keys_help()
+                       + "\nnose kinds and their keys (as nstar's, without radius: the nose's radius is diameter_m/2):\n"
+                       + "\n".join(_wrap(f"  {k}: {v}", 4) for k, v in SHOT_NOSE_HELP.items())
+                       + "\n\n" + _wrap(LEVELS_EPILOG))
     p.add_argument("kind", help=f"nose kind, one of {sorted(NOSES)}")
-    p.add_argument("params", nargs="*", metavar="key=value", help="nose and shot keys in SI units")
+    p.add_argument("params", nargs="*", metavar="key=value", help="shot keys and nose keys (see below)")
     _level_options(p, "level of the fidelity ladder (default analytic)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     return p
@@ -82,10 +114,16 @@ def _parser():
     _shot_parser(sub, "dop", "depth of penetration, time to rest, peak deceleration and cost of one shot")
     s = _shot_parser(sub, "simulate", "one shot as dop, and its history (time, depth, velocity, deceleration) as CSV")
     s.add_argument("--out", required=True, help="history CSV to write (levels trajectory, cavity, fe)")
+    from .shots import columns_help
     pr = sub.add_parser("predict", help="depth of penetration of a CSV of shots at any level",
-                        epilog=LEVELS_EPILOG)
-    pr.add_argument("shots", help="CSV in the schema of experiments-dev.csv (other columns are passed through; "
-                                  "length_m is needed by the fe level)")
+                        formatter_class=argparse.RawDescriptionHelpFormatter,
+                        epilog=_wrap("shots CSV: a header row naming the columns (each once), one shot a row; numbers "
+                                     f"as {NUMBER_FORM}; other columns are passed through; a row that fails a check is "
+                                     "skipped with the reason. Columns (units in the names; the shot keys of dop and "
+                                     "simulate):") + "\n"
+                               + "\n".join(_wrap(line, 23) for line in columns_help().splitlines())
+                               + "\n\n" + _wrap(LEVELS_EPILOG))
+    pr.add_argument("shots", help="CSV in the schema of workflow/data/experiments-dev.csv (columns below)")
     _level_options(pr, "level of the fidelity ladder (default analytic: Eq 9, adds dop_pred_m; the other levels add "
                        "model, dop_pred_m, time_to_rest_pred_s, peak_deceleration_pred_m_s2, wall_time_s)")
     pr.add_argument("--out", required=True, help="output CSV: the input rows that could be predicted, plus the predictions")
@@ -173,21 +211,10 @@ def _context(args):
 
 
 def _shot(args):
-    """The UserShot of dop/simulate's keys (nose keys go to the nose)."""
-    from .levels import UserShot
-    kw = _keywords(args.params)
-    values = {}
-    for key, (_, default) in SHOT_KEYS.items():
-        raw = kw.pop(key, default)
-        if raw is None:
-            if key == "length":
-                continue
-            raise ParameterError("shot", key, None, f"required: {SHOT_KEYS[key][0]}")
-        try:
-            values[key] = float(raw)
-        except ValueError:
-            raise ParameterError("shot", key, raw, SHOT_KEYS[key][0]) from None
-    return UserShot(make_nose(args.kind, **kw), **values)
+    """The UserShot of dop/simulate's keys: the shot fields of the shots CSV (converted to SI by
+    levels.shot_from_keywords) and the nose's keys."""
+    from .levels import shot_from_keywords
+    return shot_from_keywords(args.kind, _keywords(args.params))
 
 
 def _one_shot(args) -> int:

@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import jsonschema
 import yaml
 
 from .reference import load_reference
+from .units import parse_number
 
 
 class ConfigError(ValueError):
@@ -115,8 +117,9 @@ def coerce(data, schema):
     """``data`` with strings turned into numbers or booleans where ``schema`` asks for them.
 
     Snakemake's ``--config key={a: 1}`` passes the nested values as strings;
-    this lets such overrides mean what they say. Anything that does not
-    convert is left as it is, for validation to report.
+    this lets such overrides mean what they say. Numbers are read in the one
+    form of units.NUMBER_FORM (whole numbers: digits only); anything that does
+    not convert is left as it is, for validation to report.
     """
     kind = schema.get("type")
     if isinstance(data, dict):
@@ -126,13 +129,14 @@ def coerce(data, schema):
     if isinstance(data, list):
         return [coerce(v, schema.get("items", {})) for v in data]
     if isinstance(data, str):
-        text = data.strip()
-        if kind in ("integer", "number"):
+        if kind == "integer":
+            return int(data) if re.fullmatch(r"[+-]?[0-9]+", data, re.ASCII) else data
+        if kind == "number":
             try:
-                value = int(text) if kind == "integer" else float(text)
+                return parse_number(data)  # the one form of a number ('nan', 'inf', '1_0', ' 5' stay strings)
             except ValueError:
                 return data
-            return value if math.isfinite(value) else data  # 'nan' and 'inf' stay strings, for validation to refuse
+        text = data.strip()
         if kind == "boolean" and text.lower() in ("true", "false"):
             return text.lower() == "true"
     return data

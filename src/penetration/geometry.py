@@ -23,6 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .units import NUMBER_FORM, parse_number
+
 NOSES: dict[str, type] = {}
 
 
@@ -320,9 +322,9 @@ class NoseShape:
         values = {}
         for key, value in kw.items():
             try:
-                values[key] = None if value in (None, "none") else float(value)
+                values[key] = None if value in (None, "none") else parse_number(value)
             except ValueError:
-                raise ParameterError(cls.kind, key, value, "a number in SI units") from None
+                raise ParameterError(cls.kind, key, value, f"a number in SI units: {NUMBER_FORM}") from None
         missing = [f.name for f in fields(cls) if f.name not in values
                    and f.default is dataclasses.MISSING]
         if missing:
@@ -552,10 +554,10 @@ class TabulatedNose(NoseShape):
         if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
             raise ParameterError(where, "x, y", "non-finite", "finite numbers only")
         for name, v in (("x", x), ("y", y)):
-            bad = np.nonzero(np.diff(v) < 0)[0]
-            if bad.size:
-                raise ParameterError(where, name, f"row {bad[0] + 2}",
-                                     f"{name} must be non-decreasing from tip to shank")
+            k = first_decrease(v)
+            if k is not None:
+                raise ParameterError(where, f"{name} of point {k + 1}", float(v[k]), f"{name} non-decreasing from tip to "
+                                     f"shank (point {k} of {v.size} has {name} = {v[k - 1]:g})")
         if y[0] < 0 or y[-1] <= 0:
             raise ParameterError(where, "y", (y[0], y[-1]), "y >= 0 at the tip and > 0 at the shank")
         _check(where, "y at the shank (radius)", float(y[-1]), _size, _size_text("radius"))
@@ -574,23 +576,54 @@ class TabulatedNose(NoseShape):
         keep = np.concatenate(([True], (np.diff(x) != 0) | (np.diff(y) != 0)))  # drop repeated points
         return _flat_tip(float(y[0])) + (Polyline(tuple(x[keep]), tuple(y[keep])),)
 
+    MIN_POINTS = 2  # a tip and a shank point
+
     @classmethod
     def from_csv(cls, path):
-        """Read a CSV with a header naming columns x and y (metres)."""
+        """Read a CSV with a header naming columns x and y (metres), one point a row.
+
+        Rows are numbered as in a spreadsheet (the header is row 1). Refused, naming the row or column: a
+        header without x and y or with a column twice, fewer than MIN_POINTS points, a row with more or fewer
+        fields than the header, a number not in units.NUMBER_FORM, and x or y decreasing. A UTF-8 byte-order
+        mark is read as such (as predict reads its shots).
+        """
         import csv
+        where = f"table {path}"
         try:
-            with open(path, newline="", encoding="utf-8") as fh:
-                rows = list(csv.DictReader(fh))
+            with open(path, newline="", encoding="utf-8-sig") as fh:
+                reader = csv.reader(fh)
+                header = next(reader, [])
+                rows = list(reader)
         except (UnicodeDecodeError, csv.Error) as err:
-            raise ParameterError(f"table {path}", "file", type(err).__name__, "a UTF-8 text CSV file") from None
-        if not rows or not {"x", "y"} <= set(rows[0]):
-            raise ParameterError(f"table {path}", "columns", list(rows[0]) if rows else [], "a header with columns x and y")
-        try:
-            x = tuple(float(r["x"]) for r in rows)
-            y = tuple(float(r["y"]) for r in rows)
-        except ValueError as err:
-            raise ParameterError(f"table {path}", "x, y", str(err), "numbers in metres") from None
-        return cls(x, y, str(path))
+            raise ParameterError(where, "file", type(err).__name__, "a UTF-8 text CSV file") from None
+        twice = sorted({c for c in header if header.count(c) > 1})
+        if twice:
+            raise ParameterError(where, "columns", header, f"each column once ({twice[0]!r} is given twice)")
+        if not {"x", "y"} <= set(header):
+            raise ParameterError(where, "columns", header, "a header with columns x and y")
+        if sum(1 for r in rows if r) < cls.MIN_POINTS:
+            raise ParameterError(where, "rows", sum(1 for r in rows if r),
+                                 f"a header row and at least {cls.MIN_POINTS} rows of points (x, y in metres, tip to shank)")
+        ix, iy = header.index("x"), header.index("y")
+        x, y = [], []
+        for number, row in enumerate(rows, start=2):
+            if not row:
+                continue  # a blank line (csv.DictReader skips them too)
+            if len(row) != len(header):
+                raise ParameterError(where, f"row {number}", row, f"{len(header)} fields, as the header {header} "
+                                     f"(the row has {len(row)})")
+            for name, i, out in (("x", ix, x), ("y", iy, y)):
+                try:
+                    out.append(parse_number(row[i]))
+                except ValueError:
+                    raise ParameterError(where, f"{name} in row {number}", row[i],
+                                         f"a number in metres: {NUMBER_FORM}") from None
+        for name, v in (("x", x), ("y", y)):
+            k = first_decrease(v)
+            if k is not None:
+                raise ParameterError(where, f"{name} in row {k + 2}", v[k], f"{name} non-decreasing from tip to shank "
+                                     f"(row {k + 1} has {name} = {v[k - 1]:g})")
+        return cls(tuple(x), tuple(y), str(path))
 
     @classmethod
     def from_keywords(cls, path=None, **kw):
@@ -599,6 +632,12 @@ class TabulatedNose(NoseShape):
         if path is None or not Path(path).is_file():
             raise ParameterError("table", "path", path, "an existing CSV file with columns x, y")
         return cls.from_csv(path)
+
+
+def first_decrease(values):
+    """Index of the first value smaller than the one before it, or None."""
+    bad = np.nonzero(np.diff(np.asarray(values, float)) < 0)[0]
+    return int(bad[0]) + 1 if bad.size else None
 
 
 LENGTH_FIELDS = {"ogive": ("radius", "tip_radius"), "cone": ("radius", "length", "tip_radius"), "flat": ("radius",),

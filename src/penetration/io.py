@@ -130,12 +130,17 @@ def read_noses(path) -> dict:
 def read_rows(path):
     """(header fields, rows as dicts) of a CSV file; fields beyond the header sit under the key None.
 
-    Raises ValueError naming the file when it is not UTF-8 text or has no header.
+    Raises ValueError naming the file when it is not UTF-8 text, has no header or names a column twice (a
+    dict row would keep the last of the two values silently). A UTF-8 byte-order mark is read as such.
     """
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             reader = csv.DictReader(fh)
-            rows, fields = list(reader), list(reader.fieldnames or [])
+            fields = list(reader.fieldnames or [])
+            twice = next((f for i, f in enumerate(fields) if f in fields[:i]), None)
+            if twice is not None:
+                raise ValueError(f"{path}: column {twice!r} is given twice in the header; allowed: each column once")
+            rows = list(reader)
     except UnicodeDecodeError:
         raise ValueError(f"{path} is not a UTF-8 text CSV file") from None
     except csv.Error as err:

@@ -45,11 +45,12 @@ import numpy as np
 from .cavity import Controls as CavityControls, Mesh as CavityMesh
 from .cavity_level import SigmaTable, cavity_trajectory, sigma_table
 from .dop import penetration_depth
-from .geometry import Flat, Ogive, ParameterError
+from .geometry import NOSES, Flat, Ogive, ParameterError, make_nose
 from .hjc import HJC
 from .nstar import nstar
 from .resistance import STRENGTH_LAWS, Target, crater_coefficient, crater_velocity_squared, strength_factor
-from .shots import ShotError, _number, row_problem, shot_nstar, shot_values
+from .shots import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, field_value, row_problem, shot_nstar,
+                    shot_values)
 from .shots import output_fields as shots_output_fields, predict_rows as shots_predict_rows
 from .trajectory import assemble, integrate
 from .units import MPA
@@ -75,10 +76,9 @@ HJC_SCALING_RULE = {
     "exact_at": "fc = 48 MPa (Table 1): every scaled quantity is its Table 1 value times a ratio equal to 1",
     "range_pa": list(FC_RULE_RANGE),
 }
-# Ranges of a user's shot (SI): the same as those of the shots CSV (shots.SHOT_FIELDS)
-SHOT_RANGES = {"mass": (1e-6, 1e6), "velocity": (0.0, 1e4), "fc": (0.5e6, 2000e6), "density": (100.0, 2e4),
-               "length": (0.0, 1e3)}
-SHOT_UNITS = {"mass": "kg", "velocity": "m/s", "fc": "Pa", "density": "kg/m^3", "length": "m"}
+# Ranges of a user's shot (SI, exclusive low, inclusive high) by UserShot attribute: those of shots.SHOT_FIELDS
+SHOT_RANGES = {attr: (SHOT_FIELDS[name].lo * SHOT_FIELDS[name].si, SHOT_FIELDS[name].hi * SHOT_FIELDS[name].si)
+               for attr, name in ATTRIBUTE_FIELDS.items()}
 
 
 @dataclass(frozen=True)
@@ -93,14 +93,17 @@ class UserShot:
     label: str = ""
 
     def __post_init__(self):
-        for name, (lo, hi) in SHOT_RANGES.items():
-            v = getattr(self, name)
-            if v is None and name == "length":
+        """Each attribute in its range; an error names the shot field (shots.SHOT_FIELDS) and its unit."""
+        for attr, (lo, hi) in SHOT_RANGES.items():
+            v = getattr(self, attr)
+            if v is None and attr == "length":
                 continue
             if not (isinstance(v, (int, float)) and math.isfinite(v) and lo < v <= hi):
-                raise ParameterError("shot", name, v, f"a number in ({lo:g}, {hi:g}] {SHOT_UNITS[name]}")
+                name = ATTRIBUTE_FIELDS[attr]
+                f = SHOT_FIELDS[name]
+                raise ParameterError("shot", name, v / f.si if isinstance(v, (int, float)) else v, f.allowed)
         if self.length is not None and self.length < self.nose.length:
-            raise ParameterError("shot", "length", self.length,
+            raise ParameterError("shot", "length_m", self.length,
                                  f">= the nose length {self.nose.length:.6g} m (the projectile is nose and shank)")
 
 
@@ -108,7 +111,7 @@ def hjc_for_strength(fc, base: HJC, density=None) -> HJC:
     """The HJC set ``base`` (Table 1) scaled to compressive strength fc (Pa) by HJC_SCALING_RULE."""
     lo, hi = FC_RULE_RANGE
     if not (math.isfinite(fc) and lo <= fc <= hi):
-        raise ParameterError("shot", "fc", fc, f"{lo / 1e6:g} <= fc <= {hi / 1e6:g} MPa (in Pa) at the cavity and fe "
+        raise ParameterError("shot", "fc_MPa", fc / MPA, f"{lo / MPA:g} <= fc_MPa <= {hi / MPA:g} at the cavity and fe "
                              "levels: the range of the HJC scaling rule")
     r = fc / base.fc
     s = math.sqrt(r)
@@ -239,7 +242,7 @@ def fe_settings_for(shot: UserShot, ctx: Context):
     from .fe_level import with_failure_strain
     fs = _need(ctx.failure_strain, "failure_strain", "the fe level's DO1 calibration (build "
                "results/fe/PROFILE/calibration_h*.json, or give a failure strain: --failure-strain)")
-    length = _need(shot.length, "length", "the projectile length in m (the fe level meshes nose and shank)", "shot")
+    length = _need(shot.length, "length_m", "the projectile length in m (the fe level meshes nose and shank)", "shot")
     base = ctx.fe_settings or Settings()
     k = shot.nose.radius / ctx.fe_reference_radius
     scaled = lambda x: None if x is None else x * k
@@ -290,20 +293,91 @@ def nose_of_row(shape, crh, radius):
 
 
 # ------------------------------------------------------------------ shots CSV rows at any level
+def _si(values: dict) -> dict:
+    """UserShot keyword arguments (SI) from shot field values in their units (those given)."""
+    return {SHOT_FIELDS[name].attribute: v * SHOT_FIELDS[name].si for name, v in values.items()
+            if SHOT_FIELDS[name].attribute}
+
+
 def user_shot(row) -> UserShot:
     """The UserShot of a shots-CSV row (fields checked as shots.shot_values does; length_m, when the row has it,
     for the fe level)."""
     v = shot_values(row)
     shot_nstar(row)  # checks nose_shape and crh
-    crh = float(row["crh"]) if row.get("nose_shape") == "ogive" else None
-    length = None
-    if row.get("length_m") not in (None, ""):
-        length = _number(row, "length_m", "a length in m, or empty")
+    crh = crh_value(row["crh"]) if row.get("nose_shape") == "ogive" else None
     try:
-        return UserShot(nose_of_row(row["nose_shape"], crh, 0.5 * v["diameter_m"]), v["mass_kg"], v["velocity_ms"],
-                        v["fc_MPa"] * MPA, v["target_density_kgm3"], length, row.get("shot_id", ""))
+        return UserShot(nose_of_row(row["nose_shape"], crh, 0.5 * v["diameter_m"]), **_si(v),
+                        label=row.get("shot_id", ""))
     except ValueError as err:
         raise ShotError(str(err)) from None
+
+
+# keys of the former command line (SI, radius instead of diameter) -> the shot field that replaces each
+FORMER_KEYS = {"mass": "mass_kg", "velocity": "velocity_ms", "fc": "fc_MPa", "density": "target_density_kgm3",
+               "radius": "diameter_m", "length": "length_m"}
+
+
+def nose_keys(kind) -> list:
+    """The keys of a nose kind on dop and simulate's command line: its own (as nstar takes them) minus radius,
+    which is diameter_m/2 (an ogive's psi may also be given as crh, the shots CSV's name)."""
+    if kind == "table":
+        return ["path"]
+    keys = [f.name for f in dataclasses.fields(NOSES[kind]) if f.name != "radius"]
+    return keys + (["crh"] if kind == "ogive" else [])
+
+
+def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
+    """The UserShot of dop and simulate's keys: the shot fields of shots.SHOT_FIELDS (in their units) and the keys
+    of a nose of ``kind`` (nose_keys). A key of the former vocabulary is refused with the key that replaces it.
+
+    diameter_m sets the nose's shank radius (diameter_m/2); a table nose has its own (its last y), and a
+    diameter_m given with it must be twice that.
+    """
+    if kind not in NOSES:
+        raise ParameterError("nose", "kind", kind, f"one of {sorted(NOSES)}")
+    kw = dict(keywords)
+    allowed_nose = nose_keys(kind)
+    for key in kw:
+        if key in SHOT_FIELDS or key in allowed_nose:
+            continue
+        if key in FORMER_KEYS:
+            name = FORMER_KEYS[key]
+            raise ParameterError("shot", key, kw[key], f"{key} is not a shot key: give {name} "
+                                 f"({SHOT_FIELDS[name].unit}), the {SHOT_FIELDS[name].what}")
+        raise ParameterError("shot", key, kw[key], f"a shot key ({', '.join(SHOT_FIELDS)}) or a key of the {kind} nose "
+                             f"({', '.join(allowed_nose) or 'none'})")
+    values = {}
+    for name, f in SHOT_FIELDS.items():
+        text = kw.pop(name, None)
+        if text is None:
+            if f.default is not None:
+                values[name] = f.default
+            elif name == "length_m" or (name == "diameter_m" and kind == "table"):
+                continue
+            else:
+                raise ParameterError("shot", name, None, f"required: the {f.what}, {f.allowed}")
+        else:
+            try:
+                values[name] = field_value(name, text)
+            except ShotError as err:
+                raise ParameterError("shot", name, text, err.allowed) from None
+    if kind == "ogive" and "crh" in kw:
+        if "psi" in kw:
+            raise ParameterError("ogive", "crh", kw["crh"], f"psi or crh, not both (psi={kw['psi']} is given): crh is "
+                                 "the shots CSV's name for psi")
+        try:
+            kw["psi"] = crh_value(kw["crh"])
+        except ShotError as err:
+            raise ParameterError("ogive", "crh", kw["crh"], err.allowed) from None
+        del kw["crh"]
+    if kind == "table":
+        nose = make_nose(kind, **kw)
+        if "diameter_m" in values and not math.isclose(values["diameter_m"], 2.0 * nose.radius, rel_tol=1e-9):
+            raise ParameterError("shot", "diameter_m", values["diameter_m"], f"twice the table's shank radius (its "
+                                 f"last y, {nose.radius:g} m): {2.0 * nose.radius:g} m, or leave diameter_m out")
+    else:
+        nose = make_nose(kind, radius=0.5 * values["diameter_m"], **kw)
+    return UserShot(nose, **_si(values), label=label)
 
 
 # columns a prediction adds (one the input already has is replaced)

@@ -1,29 +1,96 @@
-"""Users' shots: checks of a shot's fields and the closed-form prediction of its depth.
+"""Users' shots: the one table of a shot's fields, their checks, and the closed-form prediction of its depth.
 
 A shot is one row in the schema of ``workflow/data/experiments-dev.csv``
-(strings as read from a CSV, units in the column names). Each field is
-checked against its allowed range before anything is computed; a row that
-fails is reported by number and reason, never guessed at.
+(strings as read from a CSV, units in the column names). The same names are
+the shot keys of the command line's ``dop`` and ``simulate`` (SHOT_FIELDS:
+unit, range, what each is); inside the package everything is SI
+(``ShotField.si``). Each field is checked against its allowed range before
+anything is computed; a row that fails is reported by number and reason,
+never guessed at. Numbers are read in units.NUMBER_FORM.
 """
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from .dop import penetration_depth
 from .geometry import Flat, Ogive
 from .nstar import nstar
 from .resistance import Target, strength_factor
-from .units import MPA
+from .units import MPA, NUMBER_FORM, parse_number
 
-# name -> (exclusive lower bound, inclusive upper bound), in the column's unit
-SHOT_FIELDS = {"mass_kg": (1e-6, 1e6), "diameter_m": (2e-6, 10.0), "target_density_kgm3": (100.0, 2e4),
-               "fc_MPa": (0.5, 2000.0), "velocity_ms": (0.0, 1e4)}
+
+@dataclass(frozen=True)
+class ShotField:
+    """A numeric field of a shot: its unit, the unit in SI, its range (lo, hi] in its unit, what it is."""
+    unit: str
+    si: float
+    lo: float
+    hi: float
+    what: str
+    required: bool = True             # in a shots CSV row (False: may be missing or empty)
+    default: float | None = None      # on the command line, when the key is not given
+    attribute: str | None = None      # the levels.UserShot attribute (SI), None for diameter_m (the nose's)
+
+    @property
+    def allowed(self):
+        return f"a number in ({self.lo:g}, {self.hi:g}] {self.unit}"
+
+
+# The shot's numeric fields: the shots CSV's columns and the shot keys of dop and simulate (one vocabulary)
+SHOT_FIELDS = {
+    "mass_kg": ShotField("kg", 1.0, 1e-6, 1e6, "projectile mass", attribute="mass"),
+    "diameter_m": ShotField("m", 1.0, 2e-6, 10.0, "shank diameter (the nose's radius is diameter_m/2)"),
+    "length_m": ShotField("m", 1.0, 0.0, 1e3, "projectile length, nose and shank (needed by the fe level only)",
+                          required=False, attribute="length"),
+    "target_density_kgm3": ShotField("kg/m^3", 1.0, 100.0, 2e4, "concrete density", default=2440.0,
+                                     attribute="density"),
+    "fc_MPa": ShotField("MPa", MPA, 0.5, 2000.0, "concrete compressive strength (20-200 MPa at the cavity and fe "
+                        "levels: the range of the HJC scaling rule)", attribute="fc"),
+    "velocity_ms": ShotField("m/s", 1.0, 0.0, 1e4, "striking velocity", attribute="velocity"),
+}
+# shot field of each UserShot attribute (SI)
+ATTRIBUTE_FIELDS = {f.attribute: name for name, f in SHOT_FIELDS.items() if f.attribute}
 NOSE_SHAPES = ("ogive", "hemispherical", "flat")
 CRH_RANGE = (0.5, 1e4)
+# the nose columns of a shots CSV: name -> what it holds
+NOSE_COLUMNS = {"nose_shape": f"one of {', '.join(NOSE_SHAPES)} (required)",
+                "crh": f"caliber-radius-head of an ogive, a number in [{CRH_RANGE[0]:g}, {CRH_RANGE[1]:g}] "
+                       "(required for nose_shape ogive, ignored otherwise)"}
 
 
 class ShotError(ValueError):
     """A shot field outside its allowed range (the message names field, value and range)."""
+
+
+def refused(name, value, allowed) -> ShotError:
+    """The ShotError of field ``name`` at ``value`` (its text, or a number in the field's unit), with the field,
+    the value and what is allowed as attributes."""
+    shown = f"{value:g}" if isinstance(value, float) else repr(value)
+    err = ShotError(f"{name} = {shown} is not allowed: {allowed}")
+    err.name, err.value, err.allowed = name, value, allowed
+    return err
+
+
+def columns_help() -> str:
+    """The shots CSV's columns, one a line: name, unit and range, required or optional (for predict --help)."""
+    lines = [f"  {name:<20} {f.what}, {f.allowed} ({'required' if f.required else 'optional'})"
+             for name, f in SHOT_FIELDS.items()]
+    lines += [f"  {name:<20} {text}" for name, text in NOSE_COLUMNS.items()]
+    return "\n".join(lines)
+
+
+def crh_value(value) -> float:
+    """A CRH (the shots CSV's crh, dop's crh=) checked against CRH_RANGE."""
+    lo, hi = CRH_RANGE
+    allowed = f"a number in [{lo:g}, {hi:g}] for an ogive"
+    try:
+        crh = parse_number(value)
+    except ValueError:
+        raise refused("crh", value, f"{allowed} ({NUMBER_FORM})") from None
+    if not lo <= crh <= hi:
+        raise refused("crh", crh, allowed)
+    return crh
 
 
 def shot_nstar(row) -> float:
@@ -35,32 +102,33 @@ def shot_nstar(row) -> float:
         return nstar(Ogive(0.5, 1.0))
     if shape == "flat":
         return nstar(Flat(1.0))
-    lo, hi = CRH_RANGE
-    crh = _number(row, "crh", f"a number in [{lo}, {hi}] for an ogive")
-    if not lo <= crh <= hi:
-        raise ShotError(f"crh = {crh} is not allowed: a number in [{lo}, {hi}] for an ogive")
-    return nstar(Ogive(crh, 1.0))
+    return nstar(Ogive(crh_value(row.get("crh", "")), 1.0))
 
 
 def _number(row, name, allowed):
     try:
-        value = float(row.get(name, ""))
+        return parse_number(row.get(name, ""))
     except (TypeError, ValueError):
-        raise ShotError(f"{name} = {row.get(name)!r} is not allowed: {allowed}") from None
-    if not math.isfinite(value):
-        raise ShotError(f"{name} = {value} is not allowed: {allowed}")
-    return value
+        raise refused(name, row.get(name), f"{allowed} ({NUMBER_FORM})") from None
+
+
+def field_value(name, text) -> float:
+    """The value (in the field's unit) of shot field ``name`` from its text, checked against its range."""
+    f = SHOT_FIELDS[name]
+    v = _number({name: text}, name, f.allowed)
+    if not f.lo < v <= f.hi:
+        raise refused(name, v, f.allowed)
+    return v
 
 
 def shot_values(row) -> dict:
-    """The numeric fields of a shot, each checked against SHOT_FIELDS."""
+    """The numeric fields of a shot (in the columns' units), each checked against SHOT_FIELDS; an optional field
+    that is missing or empty is left out."""
     out = {}
-    for name, (lo, hi) in SHOT_FIELDS.items():
-        allowed = f"a number in ({lo:g}, {hi:g}]"
-        v = _number(row, name, allowed)
-        if not lo < v <= hi:
-            raise ShotError(f"{name} = {v:g} is not allowed: {allowed}")
-        out[name] = v
+    for name, f in SHOT_FIELDS.items():
+        if not f.required and row.get(name) in (None, ""):
+            continue
+        out[name] = field_value(name, row.get(name, ""))
     return out
 
 
