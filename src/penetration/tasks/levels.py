@@ -34,12 +34,12 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
                   cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,
                   cavity_rtol=cfg["cavity"]["rtol"], **fe)
     if cavity_cal is not None:
-        ctx.strength_scale = load_json(cavity_cal)["strength_scale"]
+        ctx.strength_scale = _calibration(cavity_cal, "strength_scale")["strength_scale"]
         ctx.strength_scale_source = f"calibrated on DO1, {cavity_cal}"
     if fe_cal is not None:
         if "fe" not in cfg:
             raise ValueError(f"{fe_cal}: an fe calibration needs the config's fe section (its mesh), which is missing")
-        cal = load_json(fe_cal)
+        cal = _calibration(fe_cal, "fs")
         if not math.isclose(cal["element_size"], ctx.fe_settings.element_size):
             raise ValueError(f"{fe_cal}: calibrated at element size {cal['element_size']} m, the {profile} profile "
                              f"meshes at {ctx.fe_settings.element_size} m")
@@ -49,13 +49,34 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
     return ctx
 
 
+# The committed records of the DO1 calibrations the command line's levels carry over (rules cavity_calibration_record
+# and fe_calibration_record): relative to the pipeline's directory
+CAVITY_CALIBRATION = "figures/calibration_cavity_do1.csv"
+FE_CALIBRATION = "figures/fe/{profile}/calibration_fe_do1.csv"
+
+
+def _calibration(path, key) -> dict:
+    """A DO1 calibration as the levels read it: a rule's JSON (results/) or its committed one-row record (figures/),
+    whose ``value`` is the fitted ``key``."""
+    if str(path).endswith(".json"):
+        return load_json(path)
+    row = pd.read_csv(path).iloc[0]
+    if row.parameter != key:
+        raise ValueError(f"{path}: a calibration of {row.parameter}, not of {key}")
+    out = {key: float(row.value)}
+    if "element_size_m" in row:
+        out.update(element_size=float(row.element_size_m), elements_across_radius=float(row.elements_across_radius))
+    return out
+
+
 def context_from_pipeline(root=".", profile="full", strength_law=None) -> Context:
-    """The levels' context as the pipeline builds it, from the files under ``root`` (config, reference and the DO1
-    calibrations under results/ where they exist)."""
+    """The levels' context as the pipeline builds it, from the files under ``root``: the config, the reference and
+    the committed records of the DO1 calibrations (a level whose record is missing refuses to run, saying which
+    file to build)."""
     root = Path(root)
     cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
-    cav = root / "results/calibration/cavity_do1.json"
-    fe = root / f"results/fe/{profile}/calibration_h{cfg['fe']['profiles'][profile]['element_size']}.json"
+    cav = root / CAVITY_CALIBRATION
+    fe = root / FE_CALIBRATION.format(profile=profile)
     return context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
                               profile, strength_law)
 
