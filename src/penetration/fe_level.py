@@ -89,3 +89,96 @@ def calibrate_failure_strain(nose, mass, velocity, depth, material, settings: Se
     best = min(runs, key=lambda r: abs(r["depth_m"] - depth))
     return {"fs": best["fs"], "residual_m": best["depth_m"] - depth, "relative_residual": (best["depth_m"] - depth) / depth,
             "runs": runs, "converged": abs(best["depth_m"] - depth) <= tol_m}
+
+
+# ------------------------------------------------------------------ cost before a run
+BYTES_PER_ELEMENT = 400        # the solver's element and node arrays, about (14 + 8) floats an element and 12 a node
+DEPTH_FROM_ALLOWANCE = 0.875   # the FE depth is about 1.4 Eq 9 depths: 1.4 / DEPTH_ALLOWANCE of the domain's estimate
+TIME_FACTOR = 2.1              # time to rest over depth / striking velocity (Forrestal's model: 2.0-2.2 over the ladder)
+LOAD_FACTOR = 1.3              # an element-step while the target yields and erodes over one of the probe's (elastic) steps
+
+
+@dataclasses.dataclass(frozen=True)
+class CostEstimate:
+    """What a shot will cost before it runs: elements x steps, and the time on this machine."""
+    elements: int                  # of the whole mesh
+    window_elements: int           # computed at each step once the projectile is in (the moving window)
+    steps: int                     # expected: time to rest over the stable time step
+    time_to_rest_s: float          # expected
+    ns_per_element_step: float     # measured on this machine just now (0: not measured, the run was refused first)
+    seconds: float
+    memory_bytes: float
+
+    def describe(self) -> str:
+        per = f"{self.ns_per_element_step:.0f} ns per element-step measured now" if self.ns_per_element_step else \
+            "not measured"
+        return (f"estimated cost: {self.elements} elements ({self.window_elements} computed per step) x {self.steps} "
+                f"steps to rest at about {self.time_to_rest_s * 1e3:.3g} ms = {self.seconds / 60:.2g} min on this "
+                f"machine ({per}; {self.memory_bytes / 2**20:.0f} MiB)")
+
+
+def _available_memory():
+    import os
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return math.inf
+
+
+def estimate_cost(nose, mass, velocity, material, settings: Settings, target: TargetSpec, expected_depth,
+                  max_seconds=math.inf, probe_time=4e-5) -> CostEstimate:
+    """Elements x steps of a shot from its mesh and expected depth, and the time they take on this machine.
+
+    The mesh's element count comes from its node coordinates alone (no arrays are allocated); a shot whose mesh
+    would not fit in the memory available now raises ParameterError. Otherwise the model is built and advanced for
+    ``probe_time`` of simulated time twice (the first warms the kernels): the second gives the stable time step and
+    the wall time of an element-step now, on this machine, busy or not. The time to rest is TIME_FACTOR times the
+    expected depth (DEPTH_FROM_ALLOWANCE of the domain's) over the striking velocity; the elements computed per step
+    are the moving window's rows at mid-depth. Without the probe (``max_seconds`` already exceeded at 5 ns per
+    element-step, an optimistic bound) the estimate is returned unmeasured."""
+    import time
+    from .fe.mesh import graded
+    from .fe.shot import body_outline, model_for
+    from .fe.solver import Projectile, run
+    from .geometry import ParameterError
+    a, h = nose.radius, settings.element_size
+    depth = target.depth or (5.4 if target.kind == "block" else expected_depth + settings.depth_margin)
+    r = graded(0.0, settings.core_calibers * a, target.radius, h, settings.grading)
+    z = graded(0.0, min(depth, expected_depth + 0.5 * settings.depth_margin), depth, h, settings.grading)
+    nr, nz = len(r) - 1, len(z) - 1
+    elements = nr * nz
+    memory = BYTES_PER_ELEMENT * elements
+    available = _available_memory()
+    if memory > 0.8 * available:
+        raise ParameterError("fe shot", "mesh", f"{elements} elements",
+                             f"a mesh within 80 % of the memory available now ({available / 2**30:.1f} GiB at about "
+                             f"{BYTES_PER_ELEMENT} bytes an element: at most {int(0.8 * available / BYTES_PER_ELEMENT)} "
+                             "elements); a coarser profile or a smaller shot")
+    d_mid = 0.5 * DEPTH_FROM_ALLOWANCE * expected_depth
+    if settings.window_ahead is None:
+        rows = nz
+    else:
+        behind = settings.body_length + (settings.window_tail if settings.window_tail is not None else d_mid)
+        rows = int(((z[1:] > d_mid - behind) & (z[:-1] < d_mid + settings.window_ahead)).sum())
+    window = max(1, rows) * nr
+    t_rest = TIME_FACTOR * DEPTH_FROM_ALLOWANCE * expected_depth / velocity
+    # the explicit step of the core's elements (square, size h) at the target's dilatational wave speed
+    c = math.sqrt((material.Ke + 4 * material.G / 3) / material.rho0) if hasattr(material, "Ke") else 4000.0
+    dt_guess = settings.controls.dt_factor * h / c
+    bound = t_rest / dt_guess * window * 5e-9
+    if bound > max_seconds:
+        return CostEstimate(elements, window, int(t_rest / dt_guess), t_rest, 0.0, bound, memory)
+    model = model_for(nose, settings, target, material, expected_depth)
+    zeta, rho = body_outline(nose, settings.body_length)
+    proj = Projectile(zeta, rho, mass, 0.0, velocity, 0.0)
+    wall = steps = computed = 0
+    for chunk in range(2):
+        model.controls = dataclasses.replace(model.controls, end_time=model.t + probe_time, output_interval=probe_time,
+                                             progress=False)
+        s0, t0 = model.steps, time.perf_counter()
+        run(model, proj)
+        wall, steps, computed = time.perf_counter() - t0, model.steps - s0, (model.j1 - model.j0) * model.nr
+    ns = 1e9 * wall / max(1, steps * computed)
+    n_steps = int(t_rest / model.dt)
+    seconds = n_steps * window * ns * 1e-9 * LOAD_FACTOR
+    return CostEstimate(elements, window, n_steps, t_rest, ns, seconds, memory)
