@@ -24,6 +24,7 @@ from penetration.tasks.reference import checked_outputs
 configfile: "workflow/config.yaml"
 # Stop before any job runs if the config (file plus --config overrides) is invalid.
 check_config(config, "workflow/schemas/config.schema.json", "workflow/config.yaml (with overrides)")
+from penetration.config import check_config_files; check_config_files(workflow.configfiles)  # a key given twice
 STUDIES = load_studies("workflow/studies", "workflow/schemas/study.schema.json")
 SCENE_SCHEMA = "workflow/schemas/scene.schema.json"
 GEOMETRY_RESULTS = dict(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json")

@@ -238,3 +238,136 @@ def test_a_config_override_number_float_would_take_is_refused(monkeypatch, value
     cfg["trajectory"] = {"rtol": value}
     with pytest.raises(ConfigError, match="trajectory.rtol"):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+# ------------------------------------------------------- the config refuses bad values
+def config(**changes):
+    """The shipped config with changes at dotted paths."""
+    import yaml
+    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+    for dotted, value in changes.items():
+        *head, last = dotted.split("/")
+        node = cfg
+        for key in head:
+            node = node[key]
+        node[last] = value
+    return cfg
+
+
+def refused_config(cfg):
+    from penetration.config import ConfigError, check_config
+    with pytest.raises(ConfigError) as err:
+        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+    return str(err.value)
+
+
+@pytest.mark.parametrize("dotted,value,needle", [
+    ("fe/cutoff_hz", float("nan"), "fe.cutoff_hz: nan is not allowed: a finite number"),
+    ("fe/target_radius", float("inf"), "fe.target_radius: inf is not allowed: a finite number"),
+    ("check/precision/round_off/atol", float("inf"), "check.precision.round_off.atol: inf is not allowed"),
+    ("fig01/strengths", [20e6, float("nan")], "fig01.strengths.1: nan is not allowed"),
+])
+def test_non_finite_numbers_anywhere_in_the_config_are_refused(monkeypatch, dotted, value, needle):
+    monkeypatch.chdir(ROOT)
+    assert needle in refused_config(config(**{dotted: value}))
+
+
+def test_the_shipped_config_is_finite_and_its_unfiltered_row_rule_still_picks_the_unfiltered_rows():
+    """fig14_cutoff.csv's unfiltered rows (cutoff_hz written inf) take the fe_spike class: `where` names them by
+    the text "inf" now, which the check reads as the number the committed column holds."""
+    import numpy as np
+    from penetration.config import non_finite, read_yaml
+    from penetration.tasks.reference import cell_tolerances
+    cfg = read_yaml(ROOT / "workflow/config.yaml")
+    assert non_finite(cfg) == []
+    spec = cfg["check"]["outputs"]["figures/fe/{profile}/fig14_cutoff.csv"]
+    committed = pd.read_csv(ROOT / "figures/fe/ci/fig14_cutoff.csv")
+    tol = cell_tolerances(spec, cfg["check"]["precision"], cfg["check"]["factor"], committed)
+    spike = cfg["check"]["factor"] * cfg["check"]["precision"]["fe_spike"].get("rtol", 0.0)
+    unfiltered = np.isinf(committed.cutoff_hz.to_numpy())
+    assert unfiltered.sum() > 0
+    assert np.all(tol["peak_g"][0][unfiltered] == spike)
+    assert np.all(tol["peak_g"][0][~unfiltered] != spike)
+
+
+@pytest.mark.parametrize("dotted,value,needle", [
+    ("cavity/velocities", [100.0, 100.0, 200.0], "cavity.velocities: [100.0, 100.0, 200.0] is not allowed: strictly increasing"),
+    ("cavity/velocities", [200.0, 100.0, 300.0], "cavity.velocities: [200.0, 100.0, 300.0] is not allowed: strictly increasing"),
+    ("fe/cutoffs_hz", [1000.0, 1000.0], "fe.cutoffs_hz"),
+    ("cavity/quasi_static_from", [100.0, 50.0], "cavity.quasi_static_from"),
+    ("fig10/unload_from", [0.05, 0.02], "fig10.unload_from"),
+    ("fe/profiles/ci/mesh_study", [0.035, 0.035, 0.0233333333333], "fe.profiles.ci.mesh_study"),
+    ("sweep/sizes", {"analytic": [6, 6]}, "sweep.sizes.analytic"),
+    ("sweep/velocities", [800.0, 400.0, 800.0], "sweep.velocities"),
+    ("fe/fs_bracket", [3.0, 0.3], "fe.fs_bracket: [3.0, 0.3] is not allowed: [low, high] with low < high"),
+])
+def test_lists_whose_order_matters_are_checked(monkeypatch, dotted, value, needle):
+    monkeypatch.chdir(ROOT)
+    assert needle in refused_config(config(**{dotted: value}))
+
+
+def test_sizes_beyond_the_machine_are_refused_with_their_bound(monkeypatch):
+    monkeypatch.chdir(ROOT)
+    text = refused_config(config(**{"sweep/sizes": {"fe": [100000]}}))
+    assert "sweep.sizes.fe: [100000] is not allowed: at most the 78 shots of the sweep's grid" in text
+    text = refused_config(config(**{"cavity/zones": 5000}))
+    assert "cavity.zones: 5000 is not allowed" in text and "zones^2" in text and "at most 1906 zones" in text
+    text = refused_config(config(**{"fe/profiles/full/element_size": 1e-5}))
+    assert "fe.profiles.full.element_size: 1e-05 m is not allowed" in text
+    assert "bytes per element" in text and "os.sysconf" in text and "allowed: an element size of at least" in text
+
+
+def test_fe_mesh_estimate_counts_the_meshes_the_level_builds():
+    """The config's element count is that of fe.mesh.build for the same mesh (within the columns the kernels'
+    vector width adds)."""
+    from penetration.config import fe_mesh_elements, read_yaml
+    from penetration.fe.mesh import MeshSpec, build
+    fe = read_yaml(ROOT / "workflow/config.yaml")["fe"]
+    for h in (0.0233333333333, 0.00875, 0.003):
+        spec = MeshSpec(h, fe["core_calibers"] * 0.07, 5.1 + 0.5 * fe["depth_margin"], fe["target_radius"],
+                        5.1 + fe["depth_margin"], fe["grading"])
+        built = build(spec).elements
+        assert 0.9 * built <= fe_mesh_elements(h, fe, 0.07, 5.1) <= built
+
+
+def test_a_key_given_twice_in_a_configfile_stops_snakemake(tmp_path):
+    path = tmp_path / "extra.yaml"
+    path.write_text("trajectory:\n  rtol: 1.0e-8\ntrajectory:\n  rtol: 1.0e-6\n")
+    out = subprocess.run([sys.executable, "-m", "snakemake", "-n", "-c1", "figures/table1.csv", "--configfile",
+                          str(path)], capture_output=True, text=True, cwd=ROOT)
+    assert out.returncode != 0
+    assert f"{path}: line 3: key 'trajectory' is given twice" in out.stdout + out.stderr
+
+
+@pytest.mark.parametrize("name,suggested", [("my-shots", "my_shots"), ("shots.v2", "shots_v2"), ("tré", "tr_")])
+def test_a_scene_name_outside_the_scene_wildcard_is_refused(tmp_path, name, suggested):
+    """An FE scene folder is listed when the Snakefile is read: a file the wildcard [A-Za-z0-9_]+ cannot name is
+    refused there with a name that would do, not met by Snakemake's 'no rule to produce'."""
+    from penetration.pipeline import fe_scene_shots
+    from penetration.scenes import SceneError, read_scene, scene_names
+    folder = tmp_path / "fe"
+    folder.mkdir()
+    (folder / f"{name}.yaml").write_text((ROOT / "workflow/scenes/fe/do1.yaml").read_text())
+    schema = ROOT / "workflow/schemas/scene.schema.json"
+    for call in (lambda: fe_scene_shots(folder, schema), lambda: read_scene(folder / f"{name}.yaml", schema),
+                 lambda: scene_names(folder)):
+        with pytest.raises(SceneError) as err:
+            call()
+        text = str(err.value)
+        assert f"{name}.yaml" in text and "[A-Za-z0-9_]+" in text and f"e.g. {suggested}.yaml" in text
+
+
+def test_the_shipped_scene_folders_have_wildcard_names():
+    from penetration.scenes import scene_names
+    for folder in ("workflow/scenes", "workflow/scenes/cavity", "workflow/scenes/fe"):
+        assert scene_names(ROOT / folder)
+
+
+def test_the_command_line_reads_the_pipeline_config_strictly(tmp_path):
+    """--root's workflow/config.yaml goes through the strict loader as every YAML the package reads."""
+    (tmp_path / "workflow").mkdir()
+    text = (ROOT / "workflow/config.yaml").read_text()
+    (tmp_path / "workflow/config.yaml").write_text(text + "\ntrajectory:\n  rtol: 1.0e-6\n")
+    (tmp_path / "workflow/reference").symlink_to(ROOT / "workflow/reference")
+    out = cli("dop", *SHOT, "--model", "trajectory", "--root", str(tmp_path))
+    assert out.returncode == 2 and "key 'trajectory' is given twice" in out.stderr and out.stdout == ""

@@ -16,6 +16,7 @@ import textwrap
 import time
 from pathlib import Path
 
+from .config import ConfigError
 from .geometry import NOSES, ParameterError, make_nose
 from .nstar import nstar
 from .units import NUMBER_FORM, parse_number
@@ -161,7 +162,7 @@ def _predict(args) -> int:
     if args.model != "analytic":
         try:
             ctx = _context(args)
-        except (ParameterError, OSError) as err:
+        except (ParameterError, ConfigError, OSError) as err:
             return _fail(str(err))
     good, problems = predict_rows(rows, args.strength_law, args.model, ctx, _progress(f"{args.model}: shot"))
     for p in problems:
@@ -235,7 +236,7 @@ def _one_shot(args) -> int:
             except TargetError as err:
                 return _fail(f"--out {args.out}: {err}")
         res = run(shot, args.model, ctx)
-    except (ParameterError, OSError, RuntimeError) as err:
+    except (ParameterError, ConfigError, OSError, RuntimeError) as err:
         return _fail(str(err))
     rec = res.record()
     if out is not None:

@@ -8,6 +8,7 @@ scene never carries a number from the paper that is not its own input.
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -57,8 +58,30 @@ class Scene:
     fe: dict = field(default_factory=dict)
 
 
+# a scene's name (its file's stem) as the Snakefile's scene wildcard admits it
+SCENE_NAME = r"[A-Za-z0-9_]+"
+
+
+def check_scene_name(path):
+    """Refuse a scene file whose name the scene wildcard cannot match (Snakemake would say only that no rule
+    produces its outputs), naming the file, the allowed pattern and a name that would do."""
+    stem = Path(path).stem
+    if not re.fullmatch(SCENE_NAME, stem, re.ASCII):
+        fixed = re.sub(r"[^A-Za-z0-9_]", "_", stem, flags=re.ASCII) or "scene"
+        raise SceneError(f"{path}: scene name {stem!r} is not allowed: a name matching {SCENE_NAME} (letters, digits "
+                         f"and underscores: the Snakefile's scene wildcard), e.g. {fixed}{Path(path).suffix}")
+    return stem
+
+
+def scene_names(folder) -> list:
+    """Names of the scenes of ``folder`` (every *.yaml), each checked by check_scene_name."""
+    return [check_scene_name(path) for path in sorted(Path(folder).glob("*.yaml"))]
+
+
 def read_scene(path, schema_path, levels=None):
-    """The scene file as a validated dict; ``levels``: the levels the reading rule runs (others are refused)."""
+    """The scene file as a validated dict; ``levels``: the levels the reading rule runs (others are refused). A file
+    whose name the scene wildcard cannot match is refused (check_scene_name)."""
+    check_scene_name(path)
     data = config.load(path, schema_path)
     if levels is not None and data["level"] not in levels:
         raise SceneError(f"{path}: level: {data['level']!r} is not run by this rule; allowed: {list(levels)}"

@@ -9,20 +9,19 @@ cavity scenes) with the crater law and with nose entry, for three noses.
 """
 from pathlib import Path
 
-import yaml
-
 from nstar_speed import machine, timed
 import statistics
 import time
 
 from penetration.cavity import Controls, Mesh, expand, stress_table
 from penetration.cavity_level import cavity_trajectory, sigma_table
+from penetration.config import read_yaml
 from penetration.geometry import DoubleOgive, Ogive
 from penetration.hjc import HJC
 
 
 def main():
-    cfg = yaml.safe_load((Path(__file__).resolve().parents[1] / "config.yaml").read_text())["cavity"]
+    cfg = read_yaml(Path(__file__).resolve().parents[1] / "config.yaml")["cavity"]
     print(f"machine: {machine()}")
     expand(HJC(), 1000.0, mesh=Mesh(zones=40))  # compile
     v = cfg["velocities"]

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import yaml
 
 from .. import reference
 from ..cavity_level import cavity_trajectory, sigma_table
+from ..config import load_with
 from ..dop import penetration_depth
 from ..geometry import make_nose
 from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
@@ -74,7 +74,7 @@ def context_from_pipeline(root=".", profile="full", strength_law=None) -> Contex
     the committed records of the DO1 calibrations (a level whose record is missing refuses to run, saying which
     file to build)."""
     root = Path(root)
-    cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
+    cfg = load_with(root / "workflow/config.yaml", {})  # the strict loader: a key given twice, NaN or inf refused
     cav = root / CAVITY_CALIBRATION
     fe = root / FE_CALIBRATION.format(profile=profile)
     return context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
