@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 
 from penetration import levels as L
-from penetration.geometry import Cone, MinimumNstar
+from penetration.geometry import Cone, MinimumNstar, Ogive
 from penetration.io import TargetError, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -371,3 +371,23 @@ def test_the_command_line_reads_the_pipeline_config_strictly(tmp_path):
     (tmp_path / "workflow/reference").symlink_to(ROOT / "workflow/reference")
     out = cli("dop", *SHOT, "--model", "trajectory", "--root", str(tmp_path))
     assert out.returncode == 2 and "key 'trajectory' is given twice" in out.stderr and out.stdout == ""
+
+
+# ------------------------------------------------------- no level extrapolates past its table
+@pytest.mark.parametrize("velocity", ["3000", "10000"])
+def test_the_cavity_level_refuses_a_shot_above_its_table(tmp_path, velocity):
+    shot = ("ogive", "psi=3", "diameter_m=0.14", "mass_kg=81.1", f"velocity_ms={velocity}", "fc_MPa=48")
+    out = cli("dop", *shot, "--model", "cavity", "--strength-scale", "0.6")
+    assert out.returncode == 2 and out.stdout == ""
+    assert f"shot.velocity_ms = {float(velocity)!r} is not allowed: at most 2000 m/s" in out.stderr
+    assert "cavity.velocities" in out.stderr
+    path, _ = _one_row_csv(tmp_path, velocity_ms=velocity)
+    out = cli("predict", str(path), "--model", "cavity", "--strength-scale", "0.6", "--out", str(tmp_path / "o.csv"))
+    assert out.returncode == 2 and "row 2: shot.velocity_ms" in out.stderr and "at most 2000 m/s" in out.stderr
+
+
+def test_the_cavity_table_span_is_checked_before_a_table_is_built():
+    ctx = L.Context(strength_scale=0.6, strength_scale_source="test", cavity_velocities=(100.0, 300.0, 600.0, 1000.0))
+    with pytest.raises(L.ParameterError, match="at most 1000 m/s"):
+        L.run(L.UserShot(Ogive(3.0, 0.07), 81.1, 1000.5, 48e6), "cavity", ctx)
+    assert ctx.table_builds == 0

@@ -229,7 +229,20 @@ def cavity_material(shot: UserShot, ctx: Context) -> HJC:
     return dataclasses.replace(hjc_for_strength(shot.fc, ctx.base, shot.density), strength_scale=scale)
 
 
+def check_table_span(shot: UserShot, ctx: Context):
+    """Refuse a striking velocity above the top of the cavity level's sigma_n(v) table: beyond it the table would
+    continue as a straight line in v^2 through its two fastest nodes (cavity_level.SigmaTable), a law nothing
+    computed. The normal velocity over the nose never exceeds the striking velocity, so up to the top every
+    stress the trajectory asks for is the table's own."""
+    top = max(ctx.cavity_velocities)
+    if shot.velocity > top:
+        raise ParameterError("shot", "velocity_ms", shot.velocity,
+                             f"at most {top:g} m/s at the cavity level: its sigma_n(v) table spans 0-{top:g} m/s (the "
+                             "config's cavity.velocities; add faster velocities there to go further)")
+
+
 def _cavity(shot, ctx):
+    check_table_span(shot, ctx)
     table = ctx.table(cavity_material(shot, ctx), shot.nose.radius)
     tr = cavity_trajectory(shot.nose, shot.mass, shot.velocity, table, CAVITY_EFFECTS, rtol=ctx.cavity_rtol)
     return _from_trajectory("cavity", tr, f"HJC scaled to fc = {shot.fc / 1e6:.4g} MPa, strength_scale "
