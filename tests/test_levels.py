@@ -226,7 +226,7 @@ def test_a_missing_calibration_says_how_to_build_it(tmp_path):
     (tmp_path / "workflow/config.yaml").write_text((ROOT / "workflow/config.yaml").read_text())
     (tmp_path / "workflow/reference").symlink_to(ROOT / "workflow/reference")
     out = cli("dop", *SHOT, "--model", "cavity", "--root", str(tmp_path))
-    assert out.returncode == 2 and "cavity_do1.json" in out.stderr and "--strength-scale" in out.stderr
+    assert out.returncode == 2 and "snakemake -c2 figures/calibration_cavity_do1.csv" in out.stderr and "--strength-scale" in out.stderr
 
 
 def test_the_trajectory_and_cavity_levels_read_no_fe_section(tmp_path):

@@ -44,9 +44,15 @@ LEVELS_EPILOG = (
     "ODE, crater + static + inertial; ms), cavity (HJC sigma_n(v) table of the shot's concrete driving the "
     "trajectory; seconds per new concrete, tables cached per concrete and caliber), fe (2-D axisymmetric finite "
     "elements; minutes). S(fc) of the analytic and trajectory levels: --strength-law. The cavity and fe levels scale "
-    "Table 1's HJC set to fc (levels.HJC_SCALING_RULE) and carry over the DO1 calibrations found under --root "
-    "(results/calibration/cavity_do1.json, results/fe/PROFILE/calibration_h*.json) unless --strength-scale or "
-    "--failure-strain is given.")
+    "Table 1's HJC set to fc (levels.HJC_SCALING_RULE) and carry over the DO1 calibrations committed under --root "
+    "(figures/calibration_cavity_do1.csv, figures/fe/PROFILE/calibration_fe_do1.csv) unless --strength-scale or "
+    "--failure-strain is given. The fe level prints its estimated cost first and refuses a shot estimated above "
+    "--max-minutes. Every answer comes with its level's validated accuracy on the development shots and a warning "
+    "for each quantity outside their range. Progress goes to stderr, terminal or not; an interrupted (SIGINT, "
+    "SIGTERM) fe or cavity run says where it stopped and, with --out, writes OUT.partial.json.")
+# the pipeline directory of the package's own checkout (an editable install), else the current directory
+DEFAULT_ROOT = next((str(d) for d in (Path(__file__).resolve().parents[2],) if (d / "workflow/config.yaml").is_file()), ".")
+DEFAULT_MAX_MINUTES = 20.0
 
 
 def _option_number(text):
@@ -62,8 +68,11 @@ def _level_options(p, model_help):
     p.add_argument("--strength-law", choices=["li_chen", "forrestal"], default="li_chen",
                    help="published S(fc) relation of the analytic and trajectory levels (default li_chen: S = 72 fc^-0.5, "
                         "fc in MPa)")
-    p.add_argument("--root", default=".", help="pipeline directory holding workflow/config.yaml and the DO1 "
-                   "calibrations under results/ (default: the current directory)")
+    p.add_argument("--root", default=DEFAULT_ROOT, help="pipeline directory holding workflow/config.yaml and the "
+                   "committed DO1 calibrations under figures/ (default: this package's checkout, "
+                   f"{DEFAULT_ROOT})")
+    p.add_argument("--max-minutes", type=_option_number, default=DEFAULT_MAX_MINUTES,
+                   help=f"fe level: refuse a shot whose estimated cost exceeds this (default {DEFAULT_MAX_MINUTES:g})")
     p.add_argument("--profile", choices=["full", "ci"], default="full",
                    help="FE mesh profile whose DO1 calibration the fe level carries over (default full: 8 elements "
                         "across the shank radius)")
@@ -164,9 +173,19 @@ def _predict(args) -> int:
             ctx = _context(args)
         except (ParameterError, ConfigError, OSError) as err:
             return _fail(str(err))
-    good, problems = predict_rows(rows, args.strength_law, args.model, ctx, _progress(f"{args.model}: shot"))
+    good = []
+    _interruptible()
+    try:
+        good, problems = predict_rows(rows, args.strength_law, args.model, ctx, _progress(f"{args.model}: shot"), good)
+    except (Interrupted, KeyboardInterrupt) as err:
+        where = _partial(out, {"status": "interrupted", "signal": str(err) or "SIGINT", "level": args.model,
+                               "rows": len(rows), "predicted": good})
+        print(f"interrupted after {len(good)} of {len(rows)} shots" + (f"; partial record {where}" if where else ""),
+              file=sys.stderr, flush=True)
+        return 130
     for p in problems:
         print(f"skipped {p}", file=sys.stderr)
+    _predict_trust(args, good)
     if not good:
         return _fail(f"no shot in {args.shots} could be predicted ({len(rows)} rows); nothing written")
     try:
@@ -181,17 +200,93 @@ def _predict(args) -> int:
     return 0
 
 
-def _progress(what):
-    """A progress line on a terminal (stderr), nothing otherwise."""
-    if not sys.stderr.isatty():
-        return None
+def _progress(what, every_s=5.0):
+    """Progress of a run of several shots on stderr: a bar redrawn on a terminal; otherwise a line at most every
+    ``every_s`` seconds and at the end (flushed: a log or a pipe sees it as it comes)."""
     t0 = time.perf_counter()
+    last = [-every_s]
+    tty = sys.stderr.isatty()
 
     def show(i, n):
-        bar = "#" * int(30 * i / max(n, 1))
-        print(f"\r{what} {i}/{n} [{bar:<30}] {time.perf_counter() - t0:6.1f} s", end="" if i < n else "\n",
-              file=sys.stderr, flush=True)
+        now = time.perf_counter() - t0
+        if tty:
+            bar = "#" * int(30 * i / max(n, 1))
+            print(f"\r{what} {i}/{n} [{bar:<30}] {now:6.1f} s", end="" if i < n else "\n", file=sys.stderr, flush=True)
+        elif i == n or now - last[0] >= every_s:
+            last[0] = now
+            print(f"{what} {i}/{n} done, {now:.1f} s", file=sys.stderr, flush=True)
     return show
+
+
+class Interrupted(Exception):
+    """SIGTERM or SIGINT during a run."""
+
+
+def _interruptible():
+    """SIGTERM ends a run as SIGINT does (an exception at the next line of Python, between two chunks of an FE
+    run), so that it can say where it stopped."""
+    import signal
+
+    def stop(signum, _frame):
+        raise Interrupted(signal.Signals(signum).name)
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        signal.signal(sig, stop)
+
+
+def _log():
+    """The levels' progress lines (the FE run's every ~2 s; its cost estimate) to stderr, flushed; the last kept."""
+    last = {"line": ""}
+
+    def log(line):
+        last["line"] = line
+        print(line, file=sys.stderr, flush=True)
+    log.last = last
+    return log
+
+
+def _partial(out, record):
+    """Write the partial record of an interrupted run beside --out (OUT.partial.json); returns its path or None."""
+    if out is None:
+        return None
+    from .io import write_json
+    path = Path(f"{out}.partial.json")
+    try:
+        write_json(record, path)
+    except OSError:
+        return None
+    return path
+
+
+def _trust(args, shot, level):
+    """The validated accuracy line of ``level`` and the warnings for ``shot`` (from the committed validation)."""
+    from .tasks.levels import validated_accuracy
+    from .trust import accuracy_line, warnings
+    found = validated_accuracy(args.root, args.profile)
+    if found is None:
+        return "validated accuracy unknown (no committed validation under --root)", []
+    rng, errors = found
+    line = accuracy_line(level, errors[level]) if level in errors else f"no validation of the {level} level"
+    return f"{line}; validated range: {rng.describe()}", warnings(shot, rng)
+
+
+def _predict_trust(args, good):
+    """The level's validated accuracy, and a warning for each predicted row outside the validated range (stderr)."""
+    from .levels import user_shot
+    from .tasks.levels import validated_accuracy
+    from .trust import accuracy_line, warnings
+    found = validated_accuracy(args.root, args.profile)
+    if found is None:
+        print("validated accuracy unknown (no committed validation under --root)", file=sys.stderr)
+        return
+    rng, errors = found
+    if args.model in errors:
+        print(accuracy_line(args.model, errors[args.model]), file=sys.stderr)
+    for row in good:
+        try:
+            for w in warnings(user_shot(row), rng):
+                print(f"warning: {row.get('shot_id') or 'a row'}: {w}", file=sys.stderr)
+        except ValueError:   # a row the level could predict is a valid shot; kept safe all the same
+            continue
 
 
 def _context(args):
@@ -201,6 +296,9 @@ def _context(args):
     if not (root / "workflow/config.yaml").is_file():
         raise ParameterError("argument", "--root", args.root, "a pipeline directory with workflow/config.yaml")
     ctx = context_from_pipeline(root, args.profile, args.strength_law)
+    if not args.max_minutes > 0:
+        raise ParameterError("argument", "--max-minutes", args.max_minutes, "--max-minutes > 0")
+    ctx.fe_max_seconds = 60.0 * args.max_minutes
     for name, attr in (("--strength-scale", "strength_scale"), ("--failure-strain", "failure_strain")):
         value = getattr(args, attr)
         if value is not None:
@@ -235,10 +333,22 @@ def _one_shot(args) -> int:
                 check_target(out)
             except TargetError as err:
                 return _fail(f"--out {args.out}: {err}")
-        res = run(shot, args.model, ctx)
+        log = _log()
+        _interruptible()
+        t0 = time.perf_counter()
+        try:
+            res = run(shot, args.model, ctx, log=log if args.model == "fe" else None)
+        except (Interrupted, KeyboardInterrupt) as err:
+            rec = {"status": "interrupted", "signal": str(err) or "SIGINT", "level": args.model,
+                   "wall_time_s": time.perf_counter() - t0, "last_progress": log.last["line"]}
+            where = _partial(out, rec)
+            print(f"interrupted after {rec['wall_time_s']:.1f} s; last progress: {log.last['line'] or 'none'}"
+                  + (f"; partial record {where}" if where else ""), file=sys.stderr, flush=True)
+            return 130
     except (ParameterError, ConfigError, OSError, RuntimeError) as err:
         return _fail(str(err))
     rec = res.record()
+    rec["validated_accuracy"], rec["warnings"] = _trust(args, shot, args.model)
     if out is not None:
         import pandas as pd
         from .io import write_csv
@@ -256,7 +366,10 @@ def _one_shot(args) -> int:
         print(f"level              {rec['level']}\ndepth              {rec['depth_m']:.6g} m\n"
               f"time to rest       {rec['time_to_rest_s']:.6g} s\npeak deceleration  {rec['peak_deceleration_m_s2']:.6g} m/s^2\n"
               f"status             {rec['status']}\nwall time          {rec['wall_time_s']:.3g} s\nnotes              {rec['notes']}"
-              + (f"\nhistory            {rec['history']}" if "history" in rec else ""))
+              + (f"\nhistory            {rec['history']}" if "history" in rec else "")
+              + f"\naccuracy           {rec['validated_accuracy']}")
+    for w in rec["warnings"]:
+        print(f"warning: {w}: the level's accuracy there is not known", file=sys.stderr)
     return 0
 
 

@@ -182,6 +182,8 @@ class Context:
     cavity_rtol: float = 1e-9
     tables: dict = field(default_factory=dict)
     table_builds: int = 0
+    fe_max_seconds: float = math.inf        # an fe shot estimated to cost more is refused before it runs
+    fe_profile: str = "full"                # the mesh profile of the fe calibration (named in messages)
 
     def __post_init__(self):
         if self.strength_law not in STRENGTH_LAWS:
@@ -224,8 +226,9 @@ def _need(value, name, how, owner="levels"):
 
 
 def cavity_material(shot: UserShot, ctx: Context) -> HJC:
-    scale = _need(ctx.strength_scale, "strength_scale", "the cavity level's DO1 calibration (build "
-                  "results/calibration/cavity_do1.json, or give a strength scale: --strength-scale)")
+    scale = _need(ctx.strength_scale, "strength_scale", "the cavity level's DO1 calibration (its committed record "
+                  "figures/calibration_cavity_do1.csv: snakemake -c2 figures/calibration_cavity_do1.csv; or give a "
+                  "strength scale: --strength-scale)")
     return dataclasses.replace(hjc_for_strength(shot.fc, ctx.base, shot.density), strength_scale=scale)
 
 
@@ -253,8 +256,9 @@ def fe_settings_for(shot: UserShot, ctx: Context):
     """The calibration mesh and run settings scaled to the shot's radius (same elements across the radius)."""
     from .fe.shot import Settings
     from .fe_level import with_failure_strain
-    fs = _need(ctx.failure_strain, "failure_strain", "the fe level's DO1 calibration (build "
-               "results/fe/PROFILE/calibration_h*.json, or give a failure strain: --failure-strain)")
+    rec = f"figures/fe/{ctx.fe_profile}/calibration_fe_do1.csv"
+    fs = _need(ctx.failure_strain, "failure_strain", f"the fe level's DO1 calibration (its committed record {rec}: "
+               f"snakemake -c2 {rec}; or give a failure strain: --failure-strain)")
     length = _need(shot.length, "length_m", "the projectile length in m (the fe level meshes nose and shank)", "shot")
     base = ctx.fe_settings or Settings()
     k = shot.nose.radius / ctx.fe_reference_radius
@@ -268,17 +272,31 @@ def fe_settings_for(shot: UserShot, ctx: Context):
 
 
 def _fe(shot, ctx, log=None):
+    """The fe level: its cost is estimated first (fe_level.estimate_cost, told to ``log``), and a shot estimated to
+    cost more than ctx.fe_max_seconds is refused before it runs (no estimate, which probes the kernels for about a
+    second, when there is neither a limit nor a log to tell it to)."""
     from .fe.shot import TargetSpec, run_shot
-    from .fe_level import expected_depth
+    from .fe_level import estimate_cost, expected_depth
     settings, k = fe_settings_for(shot, ctx)
     material = hjc_for_strength(shot.fc, ctx.base, shot.density)
-    r = run_shot(shot.nose, shot.mass, shot.velocity, material, settings,
-                 TargetSpec("semi_infinite", ctx.fe_target_radius * k),
-                 expected_depth=expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density), log=log)
+    target = TargetSpec("semi_infinite", ctx.fe_target_radius * k)
+    expected = expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)
+    est = None
+    if log is not None or math.isfinite(ctx.fe_max_seconds):
+        est = estimate_cost(shot.nose, shot.mass, shot.velocity, material, settings, target, expected,
+                            max_seconds=ctx.fe_max_seconds)
+        if log is not None:
+            log(est.describe())
+    if est is not None and est.seconds > ctx.fe_max_seconds:
+        raise ParameterError("fe shot", "estimated cost", f"{est.seconds / 60:.3g} min",
+                             f"at most --max-minutes {ctx.fe_max_seconds / 60:g} ({est.describe()}); raise "
+                             "--max-minutes to run it")
+    r = run_shot(shot.nose, shot.mass, shot.velocity, material, settings, target, expected_depth=expected, log=log)
     s = r.summary()
     notes = (f"HJC scaled to fc = {shot.fc / 1e6:.4g} MPa, failure strain {ctx.failure_strain:.6g} "
              f"({ctx.failure_strain_source}), {shot.nose.radius / settings.element_size:.3g} elements across the radius, "
-             f"{r.elements} elements, energy error {s['energy_error_max']:.2g}")
+             f"{r.elements} elements, energy error {s['energy_error_max']:.2g}"
+             + (f", estimated cost {est.seconds:.3g} s" if est is not None else ""))
     hist = {"t": r.histories["t_bins"], "deceleration": r.histories["deceleration"]}
     return LevelResult("fe", r.depth, r.time, r.peak_deceleration, 0.0, status=r.status, notes=notes, history=hist)
 
@@ -404,15 +422,17 @@ def output_fields(fields, level="analytic"):
     return [f for f in fields if f not in PREDICTED] + PREDICTED
 
 
-def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None):
+def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None, good=None):
     """Predictions for shot rows at any level: (rows with the predicted columns added, 'row N: reason' per skipped
     row), as shots.predict_rows for the analytic level (dop_pred_m only: Eq 9); the other levels add the time to
     rest, the peak deceleration and the wall time of each shot and need ``ctx``. A run that fails (an unstable
-    FE run) skips its row with the reason. ``progress(i, n)`` is called after each row.
+    FE run) skips its row with the reason. ``progress(i, n)`` is called after each row. ``good``: a list the
+    predicted rows are appended to as they come (an interrupted run keeps them there).
     """
     if level == "analytic":
         return shots_predict_rows(rows, law)
-    good, problems = [], []
+    good = [] if good is None else good
+    problems = []
     for k, row in enumerate(rows):
         i = k + 2
         if progress is not None and k:

@@ -77,8 +77,29 @@ def context_from_pipeline(root=".", profile="full", strength_law=None) -> Contex
     cfg = load_with(root / "workflow/config.yaml", {})  # the strict loader: a key given twice, NaN or inf refused
     cav = root / CAVITY_CALIBRATION
     fe = root / FE_CALIBRATION.format(profile=profile)
-    return context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
-                              profile, strength_law)
+    ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
+                             profile, strength_law)
+    ctx.fe_profile = profile
+    return ctx
+
+
+VALIDATION_SUMMARY = "figures/fe/{profile}/validation_levels_summary.csv"
+
+
+def validated_accuracy(root=".", profile="full"):
+    """(the development shots' ValidatedRange, level -> its errors on them) from the committed outputs under
+    ``root`` (the config's validation.shots and figures/fe/PROFILE/validation_levels_summary.csv); None where
+    either is missing."""
+    from ..trust import ValidatedRange
+    root = Path(root)
+    summary = root / VALIDATION_SUMMARY.format(profile=profile)
+    try:
+        cfg = load_with(root / "workflow/config.yaml", {})
+        _, rows = read_rows(root / cfg["validation"]["shots"])
+        errors = {r["level"]: r for r in pd.read_csv(summary).to_dict("records")}
+    except (OSError, KeyError, ValueError):
+        return None
+    return ValidatedRange.from_rows(rows), errors
 
 
 def _optional(inputs, name):
