@@ -1,0 +1,140 @@
+"""The numbers the README and docs/ quote, generated from the committed outputs they cite.
+
+A generated block in a markdown file is the text between ``<!-- generated: NAME -->`` and
+``<!-- end generated -->``; ``python -m penetration.docs README.md docs/*.md`` rewrites every block from the
+files under figures/ (``--check``: exit 1, naming the blocks, where a file differs from what the outputs give).
+tests/test_docs.py renders each block from the outputs committed at git HEAD and compares, so that no quoted
+number can drift from its output, and no quantity is stated in two places with two values: each lives in one
+block, built from one file.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import re
+import sys
+from pathlib import Path
+
+BLOCK = re.compile(r"(<!-- generated: (?P<name>[a-z_]+) -->\n)(?P<body>.*?)(<!-- end generated -->)", re.S)
+LEVELS = ("analytic", "trajectory", "cavity", "fe")
+EXAMPLE = ("ogive crh=3 diameter_m=0.0269 mass_kg=0.9 length_m=0.2424 velocity_ms=800 fc_MPa=35 "
+           "target_density_kgm3=2300")
+
+
+def _rows(read, path):
+    return list(csv.DictReader(io.StringIO(read(path))))
+
+
+def _pct(x) -> str:
+    return f"{100 * float(x):.0f} %"
+
+
+def _span(seconds) -> str:
+    s = float(seconds)
+    if s < 1e-6:
+        return f"{s * 1e9:.0f} ns"
+    if s < 1e-3:
+        return f"{s * 1e6:.0f} us"
+    if s < 1:
+        return f"{s * 1e3:.0f} ms"
+    return f"{s:.1f} s" if s < 90 else f"{s / 60:.1f} min"
+
+
+def levels(read) -> str:
+    """One example shot per level, with its cost and validated accuracy."""
+    acc = {r["level"]: r for r in _rows(read, "figures/fe/full/validation_levels_summary.csv")}
+    walls = {r["level"]: r for r in _rows(read, "figures/timing/validation_levels_full.csv")}
+    eq9 = next(r for r in _rows(read, "figures/timing/accuracy_cost.csv") if r["level"] == "analytic")
+    lines = ["| level | your shot | cost per shot | depth error on the 25 development shots: median, 90th percentile, "
+             "mean |", "|---|---|---|---|"]
+    for level in LEVELS:
+        a = acc[level]
+        if level == "analytic":
+            cost = f"{_span(eq9['wall_time_per_shot_s'])} (vectorised)"
+        else:
+            w = walls[level]
+            cost = f"{_span(w['median_wall_time_per_shot_s'])} (up to {_span(w['max_wall_time_per_shot_s'])})"
+        lines.append(f"| `{level}` | `python -m penetration dop {EXAMPLE.split(' ', 1)[0]} ... --model {level}` | {cost} | "
+                     f"{_pct(a['median_abs_rel_err'])}, {_pct(a['p90_abs_rel_err'])}, "
+                     f"{float(a['mean_rel_err']) * 100:+.0f} % |")
+    lines += ["", "Costs: median (largest) wall time per development shot in the committed build "
+              "(`figures/timing/validation_levels_full.csv`; Eq 9: `figures/timing/accuracy_cost.csv`); errors: "
+              "`figures/fe/full/validation_levels_summary.csv` (fe at the default mesh). A positive mean is too deep."]
+    return "\n".join(lines) + "\n"
+
+
+def answer(read) -> str:
+    """The paper's central contrast at each level, over Table 3's velocities."""
+    t = [r for r in _rows(read, "figures/nose_contrasts_table.csv") if r["contrast"] == "DO/CRH 4.5"]
+    fe = [r for r in _rows(read, "figures/fe/full/table3_ratios.csv") if r["contrast"] == "DO/CRH 4.5"]
+    band = [r for r in _rows(read, "figures/fe/contrast_band.csv")
+            if r["contrast"] == "DO/CRH 4.5" and r["centre_elements_across"] == "10"]
+
+    def rng(values):
+        v = sorted(float(x) for x in values)
+        return f"{v[0]:.3f}-{v[-1]:.3f}"
+
+    vel = ", ".join(f"{float(r['velocity']):.0f}" for r in t)
+    return (f"Depth ratio of the double ogive to the CRH 4.5 ogive (DO/CRH 4.5) at {vel} m/s: the paper's simulation "
+            f"{rng(r['paper_sim_ratio'] for r in t)}, its Eq 9 calculation {rng(r['paper_calc_ratio'] for r in t)}; "
+            f"here Eq 9 with the stated S {rng(r['analytic_stated_S_ratio'] for r in t)}, the trajectory level "
+            f"{rng(r['trajectory_ratio'] for r in t)}, the cavity level {rng(r['cavity_ratio'] for r in t)} "
+            f"(`figures/nose_contrasts_table.csv`), the finite-element level at its default mesh "
+            f"{rng(r['fe_ratio'] for r in fe)} (`figures/fe/full/table3_ratios.csv`) and, as the mean over a band of "
+            f"seven meshes around 10 elements across the shank radius, {rng(r['mean_ratio'] for r in band)} "
+            f"(a study: `figures/fe/contrast_band.csv`).\n")
+
+
+def rebuild(read) -> str:
+    """The last recorded fresh-clone runs of each target."""
+    rows = _rows(read, "figures/timing/fresh_clone.csv")
+    last = {}
+    for r in rows:
+        last[r["target"]] = r
+    out = []
+    for target, what in (("reproduce", "`make install` + `make reproduce`"), ("test", "`make install` + `make test`"),
+                         ("ci", "`CI=true bash .ci/run`")):
+        if target in last:
+            r = last[target]
+            out.append(f"- {what}: {float(r['total_s']) / 60:.1f} min from a fresh clone (install "
+                       f"{float(r['install_s']) / 60:.1f} min), {r['date'][:10]}, commit {r['commit']}, on {r['machine']}")
+    return "\n".join(out) + "\n\n(`figures/timing/fresh_clone.csv`, written by `workflow/benchmarks/fresh_clone.py`)\n"
+
+
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild}
+
+
+def render(text: str, read) -> str:
+    """``text`` with every generated block rebuilt from the outputs ``read(path)`` returns."""
+    def fill(m):
+        name = m.group("name")
+        if name not in BLOCKS:
+            raise KeyError(f"generated block {name!r}: known {sorted(BLOCKS)}")
+        return m.group(1) + BLOCKS[name](read) + m.group(4)
+    return BLOCK.sub(fill, text)
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description="rewrite the generated blocks of markdown files from figures/")
+    p.add_argument("files", nargs="+")
+    p.add_argument("--check", action="store_true", help="change nothing; exit 1 if a file's blocks are out of date")
+    args = p.parse_args(argv)
+    read = lambda path: Path(path).read_text()
+    stale = []
+    for f in args.files:
+        text = Path(f).read_text()
+        new = render(text, read)
+        if new != text:
+            stale.append(f)
+            if not args.check:
+                from .io import write_text
+                write_text(f, new)
+    if args.check and stale:
+        print(f"out of date: {', '.join(stale)} (python -m penetration.docs {' '.join(stale)})", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
