@@ -17,14 +17,18 @@
 # threads, resources (mem_mb, runtime in minutes) and a benchmark record.
 from pathlib import Path
 
-from penetration.config import check_config
+from penetration.config import check_config, check_config_files
 from penetration.pipeline import fe_scene_shots, load_studies, task
+from penetration.scenes import scene_names
 from penetration.tasks.reference import checked_outputs
 
 configfile: "workflow/config.yaml"
 # Stop before any job runs if the config (file plus --config overrides) is invalid.
 check_config(config, "workflow/schemas/config.schema.json", "workflow/config.yaml (with overrides)")
-from penetration.config import check_config_files; check_config_files(workflow.configfiles)  # a key given twice
+check_config_files(workflow.configfiles)  # a key given twice in a config file (Snakemake keeps the last silently)
+# a scene file whose name the scene wildcard cannot match is refused, naming it (not Snakemake's "No rule to produce")
+for folder in ("workflow/scenes", "workflow/scenes/cavity", "workflow/scenes/fe"):
+    scene_names(folder)
 STUDIES = load_studies("workflow/studies", "workflow/schemas/study.schema.json")
 SCENE_SCHEMA = "workflow/schemas/scene.schema.json"
 GEOMETRY_RESULTS = dict(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json")
