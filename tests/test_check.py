@@ -99,7 +99,7 @@ def test_every_committed_output_csv_is_checked():
     check = cfg["check"]
     bands = [p for band in cfg["fe_band"]["bands"].values() for p in band]
     paper = set(checked_outputs(check, ["full", "ci"]))
-    studies = set(checked_outputs(check, ["full"], bands, "studies"))
+    studies = set(checked_outputs(check, ["full", "ci"], bands, "studies"))
     assert {"figures/fe/band725/table3.csv", "figures/fe/contrast_band.csv"} <= studies
     assert not paper & studies
     listed = paper | studies
@@ -200,7 +200,7 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     import yaml
     root = Path(__file__).resolve().parents[1]
     check = yaml.safe_load((root / "workflow/config.yaml").read_text())["check"]
-    specs = {**checked_outputs(check, ["full", "ci"]), **checked_outputs(check, ["full"], (), "studies")}
+    specs = {**checked_outputs(check, ["full", "ci"]), **checked_outputs(check, ["full", "ci"], (), "studies")}
     record = root / RECORDS / new_build
     against = root if old_build is None else root / RECORDS / old_build
     files = sorted(p.relative_to(record).as_posix() for p in record.rglob("*.csv"))

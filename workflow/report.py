@@ -310,8 +310,9 @@ table(pd.read_csv(study("timing/fe_window_full.csv")))
 # with Table 1's HJC set scaled to each shot's concrete (`figures/hjc_scaling.csv`).
 
 # %%
-table(pd.read_csv(FIG / f"fe/{PROFILE}/validation_levels_summary.csv"))
-figure(FIG / f"fe/{PROFILE}/validation_levels.png", width=900)
+md("*Study* (`make studies`): every level on the development shots.")
+table(pd.read_csv(study(f"fe/{PROFILE}/validation_levels_summary.csv")))
+figure(study(f"fe/{PROFILE}/validation_levels.png"), width=900)
 md("Accuracy against cost over the ladder (*study*, `make studies`):")
 table(pd.read_csv(study("accuracy_cost.csv")))
 figure(study("timing/accuracy_cost.png"), width=900)

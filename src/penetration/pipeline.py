@@ -125,6 +125,24 @@ def load_studies(folder, schema_path) -> dict:
     return studies
 
 
+def fe_shot_owners(folder, schema_path) -> dict:
+    """(scene, nose, velocity tag) -> the scene whose job computes that shot: the first scene, in name order, with
+    the same shot of the same physics (everything of the scene file but its description, velocities and other
+    noses equal, the nose's definition too). Fig 15's sweep and Table 3 share nine shots: each runs once."""
+    from .scenes import read_scene, velocities
+    scenes = {p.stem: read_scene(p, schema_path, ("fe",)) for p in sorted(Path(folder).glob("*.yaml"))}
+    physics = {name: {k: v for k, v in d.items() if k not in ("description", "velocities", "noses")}
+               for name, d in scenes.items()}
+    owners, seen = {}, {}
+    for name in sorted(scenes, key=lambda n: (n != "table3", n)):   # Table 3's own jobs first
+        d = scenes[name]
+        for v in velocities(d["velocities"]):
+            for nose, spec in d["noses"].items():
+                key = (nose, f"{v:g}", repr(spec), repr(physics[name]))
+                owners[(name, nose, f"{v:g}")] = seen.setdefault(key, name)
+    return owners
+
+
 def fe_scene_shots(folder, schema_path) -> dict:
     """Shots of the finite-element scenes: scene name -> [(nose, velocity tag)], every scene validated (level fe)."""
     from .scenes import read_scene, velocities

@@ -4,14 +4,22 @@
 # fe_mesh_study on (mesh study, contrast convergence, bands, ensembles, rear face, moving window) are studies.
 
 FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
+# the scene whose job computes each shot: a shot that two scenes share with the same physics runs once (Fig 15's
+# sweep takes Table 3's nine shots at 800-1200 m/s from Table 3's jobs)
+FE_OWNER = fe_shot_owners("workflow/scenes/fe", SCENE_SCHEMA)
 
 
 def fe_shots(scene):
-    return [f"results/fe/{{profile}}/{scene}/{nose}_{v}.json" for nose, v in FE_SCENES[scene]]
+    return [f"results/fe/{{profile}}/{FE_OWNER[(scene, nose, v)]}/{nose}_{v}.json" for nose, v in FE_SCENES[scene]]
 
 
 def fe_histories(scene):
-    return [f"results/fe/{{profile}}/{scene}/{nose}_{v}_histories.csv" for nose, v in FE_SCENES[scene]]
+    return [f"results/fe/{{profile}}/{FE_OWNER[(scene, nose, v)]}/{nose}_{v}_histories.csv" for nose, v in FE_SCENES[scene]]
+
+
+def fe_unique_shots(*scenes):
+    """The shot files of the scenes, each shot once."""
+    return list(dict.fromkeys(path for scene in scenes for path in fe_shots(scene)))
 
 
 rule calibrate_fe_do1:
@@ -179,7 +187,7 @@ rule fe_verification:
 
 
 rule fe_summary:
-    input: **task("figures.fe_level"), shots=fe_shots("table3") + fe_shots("fig15") + fe_shots("do1"),
+    input: **task("figures.fe_level"), shots=fe_unique_shots("table3", "fig15", "do1"),
            do1="results/fe/{profile}/do1/double_ogive_835.json", block="results/fe/{profile}/do1_block/double_ogive_835.json",
            cal=lambda w: fe_calibration(w.profile), pressure="results/fe/{profile}/nose_pressure.json",
     output: json=fe_out("summary.json"), timing="figures/timing/fe_do1_{profile}.json",
