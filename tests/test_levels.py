@@ -21,8 +21,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def cli(*args, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "penetration", *args], capture_output=True, text=True, cwd=cwd,
-                          env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+    """The command line, run in this process (conftest.run_cli)."""
+    from conftest import run_cli
+    return run_cli(*args, cwd=cwd)
 
 
 # ------------------------------------------------------------------ the HJC fc scaling rule

@@ -23,8 +23,9 @@ SHOTS = ROOT / "workflow/data/experiments-dev.csv"
 
 
 def cli(*args, cwd=ROOT):
-    return subprocess.run([sys.executable, "-m", "penetration", *args], capture_output=True, text=True, cwd=cwd,
-                          env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+    """The command line, run in this process (conftest.run_cli)."""
+    from conftest import run_cli
+    return run_cli(*args, cwd=cwd)
 
 
 def shots_file(tmp_path, text, name="shots.csv"):
