@@ -257,13 +257,21 @@ def _partial(out, record):
     return path
 
 
+UNKNOWN_ACCURACY = "validated accuracy unknown (no committed validation under --root)"
+
+
+def _validation(args):
+    """(the development shots' range, level -> errors) from the committed validation under --root, or None."""
+    from .tasks.levels import validated_accuracy
+    return validated_accuracy(args.root, args.profile)
+
+
 def _trust(args, shot, level):
     """The validated accuracy line of ``level`` and the warnings for ``shot`` (from the committed validation)."""
-    from .tasks.levels import validated_accuracy
     from .trust import accuracy_line, warnings
-    found = validated_accuracy(args.root, args.profile)
+    found = _validation(args)
     if found is None:
-        return "validated accuracy unknown (no committed validation under --root)", []
+        return UNKNOWN_ACCURACY, []
     rng, errors = found
     line = accuracy_line(level, errors[level]) if level in errors else f"no validation of the {level} level"
     return f"{line}; validated range: {rng.describe()}", warnings(shot, rng)
@@ -272,21 +280,21 @@ def _trust(args, shot, level):
 def _predict_trust(args, good):
     """The level's validated accuracy, and a warning for each predicted row outside the validated range (stderr)."""
     from .levels import user_shot
-    from .tasks.levels import validated_accuracy
     from .trust import accuracy_line, warnings
-    found = validated_accuracy(args.root, args.profile)
+    found = _validation(args)
     if found is None:
-        print("validated accuracy unknown (no committed validation under --root)", file=sys.stderr)
+        print(UNKNOWN_ACCURACY, file=sys.stderr)
         return
     rng, errors = found
     if args.model in errors:
         print(accuracy_line(args.model, errors[args.model]), file=sys.stderr)
     for row in good:
         try:
-            for w in warnings(user_shot(row), rng):
-                print(f"warning: {row.get('shot_id') or 'a row'}: {w}", file=sys.stderr)
-        except ValueError:   # a row the level could predict is a valid shot; kept safe all the same
+            shot = user_shot(row)
+        except ValueError:   # Eq 9 predicts a row the other levels refuse (length_m shorter than the nose): no range
             continue
+        for w in warnings(shot, rng):
+            print(f"warning: {row.get('shot_id') or 'a row'}: {w}", file=sys.stderr)
 
 
 def _context(args):

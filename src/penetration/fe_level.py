@@ -138,14 +138,12 @@ def estimate_cost(nose, mass, velocity, material, settings: Settings, target: Ta
     are the moving window's rows at mid-depth. Without the probe (``max_seconds`` already exceeded at 5 ns per
     element-step, an optimistic bound) the estimate is returned unmeasured."""
     import time
-    from .fe.mesh import graded
-    from .fe.shot import body_outline, model_for
+    from .fe.mesh import node_lines
+    from .fe.shot import body_outline, mesh_spec, model_for
     from .fe.solver import Projectile, run
     from .geometry import ParameterError
-    a, h = nose.radius, settings.element_size
-    depth = target.depth or (5.4 if target.kind == "block" else expected_depth + settings.depth_margin)
-    r = graded(0.0, settings.core_calibers * a, target.radius, h, settings.grading)
-    z = graded(0.0, min(depth, expected_depth + 0.5 * settings.depth_margin), depth, h, settings.grading)
+    h = settings.element_size
+    r, z = node_lines(mesh_spec(nose, settings, target, expected_depth))
     nr, nz = len(r) - 1, len(z) - 1
     elements = nr * nz
     memory = BYTES_PER_ELEMENT * elements

@@ -139,11 +139,15 @@ def polar(radii, n_theta):
     return Grid(R, -np.outer(np.cos(th), rad))
 
 
-def build(spec: MeshSpec) -> Grid:
+def node_lines(spec: MeshSpec):
+    """(r, z): the node coordinates of the grid's columns and rows (cheap: no 2-D array is made)."""
     # columns in a multiple of the element kernels' vector width: no element of a row falls to a scalar remainder loop
-    return Grid.tensor(graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading,
-                              VECTOR_WIDTH),
-                graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
+    return (graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading, VECTOR_WIDTH),
+            graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
+
+
+def build(spec: MeshSpec) -> Grid:
+    return Grid.tensor(*node_lines(spec))
 
 
 # Decimals of a metre the rigid body's outline is rounded to (1 pm): far below any length of the model, but a

@@ -64,16 +64,19 @@ class Settings:
     controls: Controls = field(default_factory=Controls)
 
 
-def model_for(nose, settings: Settings, target: TargetSpec, material, expected_depth):
-    a = nose.radius
+def mesh_spec(nose, settings: Settings, target: TargetSpec, expected_depth) -> MeshSpec:
+    """The target's mesh for a shot: the block's depth, or the expected depth plus the margin (semi-infinite)."""
     if target.kind == "block":
         depth = target.depth or 5.4
-        lateral = bottom = "free"
     else:
         depth = target.depth or expected_depth + settings.depth_margin
-        lateral = bottom = "non_reflecting"
-    spec = MeshSpec(settings.element_size, settings.core_calibers * a, min(depth, expected_depth + 0.5 * settings.depth_margin),
-                    target.radius, depth, settings.grading)
+    return MeshSpec(settings.element_size, settings.core_calibers * nose.radius,
+                    min(depth, expected_depth + 0.5 * settings.depth_margin), target.radius, depth, settings.grading)
+
+
+def model_for(nose, settings: Settings, target: TargetSpec, material, expected_depth):
+    lateral = bottom = "free" if target.kind == "block" else "non_reflecting"
+    spec = mesh_spec(nose, settings, target, expected_depth)
     behind = None if settings.window_tail is None else settings.body_length + settings.window_tail
     controls = replace(settings.controls, lateral=lateral, bottom=bottom, output_interval=settings.output_interval,
                        window_ahead=settings.window_ahead, window_behind=behind)
