@@ -18,7 +18,7 @@
 from pathlib import Path
 
 from penetration.config import check_config, check_config_files
-from penetration.pipeline import fe_scene_shots, fe_shot_owners, load_studies, task
+from penetration.pipeline import fe_scene_shots, fe_shot_owners, load_studies, study_input, task
 from penetration.scenes import scene_names
 from penetration.tasks.reference import checked_outputs
 
@@ -125,7 +125,8 @@ STUDY_OUTPUTS = [
     "figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
     "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv", "figures/fe/contrast_ensemble_depths.csv",
     "figures/fe/contrast_band.png", "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
-    "figures/fe/contrast_band_meshes.csv", "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
+    "figures/fe/contrast_band_meshes.csv", "figures/fe/contrast_extrapolation.png", "figures/fe/contrast_extrapolation.csv",
+    "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/accuracy_cost.csv",
     "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png",
     # every level on the 25 development shots (the validated accuracy the command line reports), at both meshes

@@ -118,3 +118,24 @@ def test_contrast_claims_use_the_least_gain_over_table3_velocities():
     assert [r.status for r in least] == ["agrees-after-calibration", "reproduced", "agrees-after-calibration"]
     low = [r for r in contrast_rows(refs, rows_for(2.05)) if r.quantity == claim]  # +7.9 % at 500 m/s
     assert {r.status for r in low} == {"deviates"}
+
+
+@pytest.mark.parametrize("low, high, status", [(10.0, 13.0, "agrees-after-calibration"), (7.0, 13.0, "undecided"),
+                                               (9.5, 20.0, "undecided"), (12.5, 20.0, "deviates"), (1.0, 9.0, "deviates")])
+def test_an_interval_is_judged_on_where_it_lies_against_the_paper_and_the_tolerance(low, high, status):
+    """Paper 11.5 with a 2-point goal: inside the goal agrees, excluding the paper deviates, anything else is
+    undecided (the interval holds the paper's value and values outside the goal)."""
+    from penetration.diff import interval_status
+    assert interval_status(11.5, low, high, 2.0) == status
+
+
+def test_fe_limit_rows_compare_the_extrapolated_increment_with_the_paper():
+    from penetration.diff import fe_limit_rows
+    refs = load_reference(REF)
+    row = {"contrast": "DO/CRH 4.5", "velocity_ms": 800, "meshes": 21, "confidence": 0.95,
+           "ratio_at_zero_size": 1.147, "interval_low": 1.097, "interval_high": 1.197}
+    (r,) = fe_limit_rows(refs, [row])
+    assert r.paper == refs["table3.inc_equiv.800.double_ogive"].value and r.ours == pytest.approx(14.7)
+    assert r.status == "deviates" and "9.7 to 19.7 points" in r.case
+    (r,) = fe_limit_rows(refs, [{**row, "interval_low": 1.0}])
+    assert r.status == "undecided"

@@ -5,7 +5,9 @@ Each diff row compares one number the paper states with ours (status
 with a parameter calibrated on a measured shot, or ``deviates``), checks
 the paper against its own arithmetic (``reproduced`` or
 ``paper-inconsistent``), or shows a number that rests on something the
-paper does not state (``not-derivable``).
+paper does not state (``not-derivable``). A value known only within an interval (a mesh-dependent result
+extrapolated to zero element size) whose interval holds both the paper's value and values outside the
+tolerance is ``undecided``.
 """
 from __future__ import annotations
 
@@ -18,7 +20,7 @@ from scipy.interpolate import PchipInterpolator
 from .reference import TABLE3_NOSES, UNITS, VELOCITIES, Ref
 
 COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
-STATUSES = ("reproduced", "agrees-after-calibration", "deviates", "paper-inconsistent", "not-derivable")
+STATUSES = ("reproduced", "agrees-after-calibration", "deviates", "undecided", "paper-inconsistent", "not-derivable")
 AGREES = ("reproduced", "agrees-after-calibration")  # the statuses a comparison within tolerance can have
 
 
@@ -429,10 +431,8 @@ def fe_rows(refs, table3, ratios, do1_depth, fs, element_size):
     shots = [{"nose": r["nose"], "velocity": float(r["velocity_ms"]), "peak_deceleration_m_s2": r["peak_deceleration_m_s2"],
               "duration": r["time_to_rest_s"]} for r in table3]
     rows = level_rows(refs, cells, shots, level, cal)
-    keys = {"DO/CRH 4.5": ("table3.inc_equiv", "double_ogive"), "DO/CRH 3": ("table3.inc_crh3", "double_ogive"),
-            "CRH 4.5/CRH 3": ("table3.inc_crh3", "crh45")}
     for r in ratios:
-        prefix, nose = keys[r["contrast"]]
+        prefix, nose = FE_INCREMENTS[r["contrast"]]
         ref = refs[f"{prefix}.{int(r['velocity_ms'])}.{nose}"]
         ours = 100 * (r["fe_ratio"] - 1)
         ok = abs(ours - ref.value) <= 2.0
@@ -447,6 +447,34 @@ def fe_rows(refs, table3, ratios, do1_depth, fs, element_size):
         rows.append(text_gain_row(refs[key], sel, "fe_ratio", "velocity_ms", f"{level}; {cal}", calibrated=True))
     rows.append(unstated(refs["table1.fs"], fs, case=f"{level}: failure strain calibrated on DO1 at h = "
                          f"{element_size * 1e3:.3g} mm (the paper's 0.38 belongs to its unstated 3-D mesh)"))
+    return rows
+
+
+FE_INCREMENTS = {"DO/CRH 4.5": ("table3.inc_equiv", "double_ogive"), "DO/CRH 3": ("table3.inc_crh3", "double_ogive"),
+                 "CRH 4.5/CRH 3": ("table3.inc_crh3", "crh45")}
+
+
+def interval_status(paper, low, high, tol, calibrated=True):
+    """A value known within [low, high] against the paper's, to an absolute tolerance: agrees when the whole
+    interval lies within it, deviates when the interval excludes the paper's value, undecided otherwise."""
+    if paper - tol <= low and high <= paper + tol:
+        return agreement(True, calibrated)
+    return "deviates" if not low <= paper <= high else "undecided"
+
+
+def fe_limit_rows(refs, limits):
+    """The Table 3 increments of the eroding FE level at zero element size (a study: the contrasts of many meshes,
+    each calibrated on DO1, fitted against the element size and extrapolated; rows of
+    figures/fe/contrast_extrapolation.csv), judged on their intervals by interval_status (goal: 2 points)."""
+    rows = []
+    for r in limits:
+        prefix, nose = FE_INCREMENTS[r["contrast"]]
+        ref = refs[f"{prefix}.{int(r['velocity_ms'])}.{nose}"]
+        ours, lo, hi = (100 * (float(r[k]) - 1) for k in ("ratio_at_zero_size", "interval_low", "interval_high"))
+        case = (f"{ref.case} (FE level at zero element size; a line through {int(r['meshes'])} meshes each calibrated "
+                f"on DO1; {100 * float(r['confidence']):.0f} % interval {lo:.1f} to {hi:.1f} points; a study)")
+        rows.append(Row(ref.item, ref.quantity + " at zero element size (within 2 points)", case, ref.value, ours,
+                        _rel(ref.value, ours), 2.0 / abs(ref.value), interval_status(ref.value, lo, hi, 2.0)))
     return rows
 
 

@@ -62,26 +62,48 @@ def levels(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _range(values, fmt=".3f"):
+    v = sorted(float(x) for x in values)
+    return f"{v[0]:{fmt}}-{v[-1]:{fmt}}"
+
+
 def answer(read) -> str:
     """The paper's central contrast at each level, over Table 3's velocities."""
     t = [r for r in _rows(read, "figures/nose_contrasts_table.csv") if r["contrast"] == "DO/CRH 4.5"]
     fe = [r for r in _rows(read, "figures/fe/full/table3_ratios.csv") if r["contrast"] == "DO/CRH 4.5"]
-    band = [r for r in _rows(read, "figures/fe/contrast_band.csv")
-            if r["contrast"] == "DO/CRH 4.5" and r["centre_elements_across"] == "10"]
-
-    def rng(values):
-        v = sorted(float(x) for x in values)
-        return f"{v[0]:.3f}-{v[-1]:.3f}"
-
+    lim = [r for r in _rows(read, "figures/fe/contrast_extrapolation.csv") if r["contrast"] == "DO/CRH 4.5"]
+    inside = sum(r["paper_inside_interval"] == "True" for r in lim)
+    hw = [float(r["interval_half_width_points"]) for r in lim]
     vel = ", ".join(f"{float(r['velocity']):.0f}" for r in t)
     return (f"Depth ratio of the double ogive to the CRH 4.5 ogive (DO/CRH 4.5) at {vel} m/s: the paper's simulation "
-            f"{rng(r['paper_sim_ratio'] for r in t)}, its Eq 9 calculation {rng(r['paper_calc_ratio'] for r in t)}; "
-            f"here Eq 9 with the stated S {rng(r['analytic_stated_S_ratio'] for r in t)}, the trajectory level "
-            f"{rng(r['trajectory_ratio'] for r in t)}, the cavity level {rng(r['cavity_ratio'] for r in t)} "
+            f"{_range(r['paper_sim_ratio'] for r in t)}, its Eq 9 calculation {_range(r['paper_calc_ratio'] for r in t)}; "
+            f"here Eq 9 with the stated S {_range(r['analytic_stated_S_ratio'] for r in t)}, the trajectory level "
+            f"{_range(r['trajectory_ratio'] for r in t)}, the cavity level {_range(r['cavity_ratio'] for r in t)} "
             f"(`figures/nose_contrasts_table.csv`), the finite-element level at its default mesh "
-            f"{rng(r['fe_ratio'] for r in fe)} (`figures/fe/full/table3_ratios.csv`) and, as the mean over a band of "
-            f"seven meshes around 10 elements across the shank radius, {rng(r['mean_ratio'] for r in band)} "
-            f"(a study: `figures/fe/contrast_band.csv`).\n")
+            f"{_range(r['fe_ratio'] for r in fe)} (`figures/fe/full/table3_ratios.csv`) and, extrapolated to zero "
+            f"element size over {lim[0]['meshes']} meshes, {_range(r['ratio_at_zero_size'] for r in lim)} with "
+            f"{100 * float(lim[0]['confidence']):.0f} % intervals of +-{min(hw):.0f} to +-{max(hw):.0f} points that hold the paper's value at {inside} of {len(lim)} velocities "
+            f"(a study: `figures/fe/contrast_extrapolation.csv`).\n")
+
+
+def fe_limit(read) -> str:
+    """The eroding FE level's nose contrasts at zero element size, with their intervals."""
+    rows = _rows(read, "figures/fe/contrast_extrapolation.csv")
+    lines = ["| contrast | velocity (m/s) | paper's simulation | at zero size | interval | scatter (points) | "
+             "paper inside |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['contrast']} | {r['velocity_ms']} | {float(r['paper_sim_ratio']):.3f} | "
+                     f"{float(r['ratio_at_zero_size']):.3f} | {float(r['interval_low']):.3f}-{float(r['interval_high']):.3f} | "
+                     f"{float(r['scatter_points']):.1f} | {'yes' if r['paper_inside_interval'] == 'True' else 'no'} |")
+    inside = sum(r["paper_inside_interval"] == "True" for r in rows)
+    mono = sum(r["single_meshes_monotone"] == "True" for r in rows)
+    lines += ["", f"{len(rows)} cells over {rows[0]['meshes']} meshes of "
+              f"{1e3 * float(rows[0]['element_size_min_m']):.1f}-{1e3 * float(rows[0]['element_size_max_m']):.1f} mm; "
+              f"half-widths {_range((r['interval_half_width_points'] for r in rows), '.1f')} points "
+              f"({100 * float(rows[0]['confidence']):.0f} %, Student's t); the paper's value inside {inside} of {len(rows)}; "
+              f"the single meshes of 3, 8, 10 and 12 across monotone in {mono} of {len(rows)} cells "
+              "(`figures/fe/contrast_extrapolation.csv`)."]
+    return "\n".join(lines) + "\n"
 
 
 def rebuild(read) -> str:
@@ -121,7 +143,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit}
 
 
 def render(text: str, read) -> str:

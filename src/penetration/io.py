@@ -91,6 +91,21 @@ def write_json(obj, path):
     write_text(path, json.dumps(obj, indent=2, default=_jsonable) + "\n")
 
 
+def committed_study(spec) -> pd.DataFrame:
+    """The CSV of a committed study output passed by penetration.pipeline.study_input ({path, sha256}), checked to be
+    the content the rule was scheduled with."""
+    import hashlib
+
+    path = Path(spec["path"])
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: a study's output this rule reads is missing; build it with `make studies`")
+    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    if digest != spec["sha256"]:
+        raise RuntimeError(f"{path} changed after the workflow was scheduled (sha256 {digest[:12]}, scheduled "
+                           f"{spec['sha256'][:12]}); run again")
+    return pd.read_csv(path)
+
+
 def load_json(path):
     return json.loads(Path(path).read_text())
 

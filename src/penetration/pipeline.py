@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import ast
 import functools
+import hashlib
 import importlib
 import json
 from pathlib import Path
@@ -100,6 +101,16 @@ def task(module: str, root: str = "src") -> dict:
     """
     rel = lambda p: f"{root}/{NAME}/{p.relative_to(PACKAGE).as_posix()}"
     return {"task": rel(_module_file(module)), "code": [rel(p) for p in code_closure(module)]}
+
+
+def study_input(path: str) -> dict:
+    """A committed study output that a rule of the paper reads (never a Snakemake input, so that rebuilding the paper
+    never reruns a study): its path and the digest of its content, passed as a param so that a changed study reruns
+    the rule (Snakemake's params trigger). The digest is "missing" when the file is not there (the task then says
+    how to build it)."""
+    p = Path(path)
+    digest = hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else "missing"
+    return {"path": path, "sha256": digest}
 
 
 def run(rule, task_file, inputs, outputs, params):

@@ -209,7 +209,7 @@ rule fe_diff:
            ratios=fe_out("table3_ratios.csv"), do1="results/fe/{profile}/do1/double_ogive_835.json",
            cal=lambda w: fe_calibration(w.profile),
     output: csv=fe_out("diff.csv"), summary=fe_out("diff_summary.md"),
-    params: profile=lambda w: w.profile,
+    params: profile=lambda w: w.profile, limit=study_input("figures/fe/contrast_extrapolation.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_diff_{profile}.tsv"
@@ -267,6 +267,19 @@ rule fe_contrast_band:
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_band.tsv"
     log: "results/logs/fe_contrast_band.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_contrast_extrapolation:
+    input: **task("tasks.fe_convergence"), meshes="figures/fe/contrast_band_meshes.csv",
+           singles="figures/fe/contrast_convergence.csv",
+    output: png=report("figures/fe/contrast_extrapolation.png", caption="../report/captions/contrast_extrapolation.rst", category="Finite-element level"),
+            csv="figures/fe/contrast_extrapolation.csv",
+    params: dpi=config["figures"]["dpi"], confidence=config["fe_band"]["confidence"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_contrast_extrapolation.tsv"
+    log: "results/logs/fe_contrast_extrapolation.log",
     script: "../scripts/run_task.py"
 
 

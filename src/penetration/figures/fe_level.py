@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..io import load_json, task, write_csv, write_json
+from ..io import committed_study, load_json, task, write_csv, write_json
 from ..reference import TABLE3_NOSES, UNITS, load_reference
 from .common import PAPER_STYLE, color, do1_histories, figure, save
 
@@ -254,6 +254,7 @@ def fe_diff(inputs, outputs, params):
     ratios = pd.read_csv(inputs.ratios).to_dict("records")
     do1, cal = load_json(inputs.do1), load_json(inputs.cal)
     rows = D.fe_rows(refs, t3, ratios, do1["depth_m"], cal["fs"], cal["element_size"])
+    rows += D.fe_limit_rows(refs, committed_study(params.limit).to_dict("records"))
     frame = pd.DataFrame([r.__dict__ for r in rows], columns=list(D.COLUMNS))
     write_csv(frame, outputs.csv)
     counts = ", ".join(f"{s} {int((frame.status == s).sum())}" for s in D.STATUSES)
