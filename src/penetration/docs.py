@@ -16,7 +16,7 @@ import re
 import sys
 from pathlib import Path
 
-BLOCK = re.compile(r"(<!-- generated: (?P<name>[a-z_]+) -->\n)(?P<body>.*?)(<!-- end generated -->)", re.S)
+BLOCK = re.compile(r"(<!-- generated: (?P<name>[a-z0-9_]+) -->\n)(?P<body>.*?)(<!-- end generated -->)", re.S)
 LEVELS = ("analytic", "trajectory", "cavity", "fe")
 
 
@@ -106,6 +106,23 @@ def fe_limit(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def fe_table3(read) -> str:
+    """The FE Table 3 cells within 5 % of the paper's simulation, split by their distance from the DO1 calibration."""
+    rows = _rows(read, "figures/fe/full/table3.csv")
+    names = {"double_ogive": "the double ogive", "crh45": "CRH 4.5", "crh3": "CRH 3"}
+    parts = []
+    for nose in dict.fromkeys(r["nose"] for r in sorted(rows, key=lambda r: r["calibration_nose"] != "True")):
+        g = [r for r in rows if r["nose"] == nose]
+        within = sum(r["within_5pct_goal"] == "True" for r in g)
+        worst = max(abs(float(r["rel_dev_fe_vs_paper_sim_pct"])) for r in g)
+        what = " (the calibrated nose)" if g[0]["calibration_nose"] == "True" else ""
+        parts.append(f"{names.get(nose, nose)}{what} {within} of {len(g)} (largest |deviation| {worst:.1f} %)")
+    gaps = sorted({float(r["velocity_minus_calibration_ms"]) for r in rows})
+    return (f"Cells within 5 % of the paper's simulated depth at 8 elements across: {'; '.join(parts)}; the cells "
+            f"lie {gaps[0]:+.0f} to {gaps[-1]:+.0f} m/s from the 835 m/s calibration shot "
+            "(`figures/fe/full/table3.csv`, `calibration_nose`, `velocity_minus_calibration_ms`).\n")
+
+
 def rebuild(read) -> str:
     """The last recorded fresh-clone runs of each target."""
     rows = _rows(read, "figures/timing/fresh_clone.csv")
@@ -143,7 +160,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3}
 
 
 def render(text: str, read) -> str:

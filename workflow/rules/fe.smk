@@ -74,6 +74,7 @@ FE_FIGURE = dict(threads=1)
 
 rule fe_table3:
     input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("table3"),
+           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/table3.yaml",
     output: csv=fe_out("table3.csv"), ratios=fe_out("table3_ratios.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5
