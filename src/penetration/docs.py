@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import csv
 import io
+import json
 import re
 import sys
 from pathlib import Path
@@ -123,6 +124,49 @@ def fe_table3(read) -> str:
             "(`figures/fe/full/table3.csv`, `calibration_nose`, `velocity_minus_calibration_ms`).\n")
 
 
+def wall_times(read) -> str:
+    """The wall times the committed timing files hold, level by level (docs/benchmarks.md)."""
+    cost = _rows(read, "figures/timing/accuracy_cost.csv")
+    by = lambda level: [r for r in cost if r["level"] == level]
+    traj = {r["setting"]: float(r["wall_time_per_shot_s"]) for r in by("trajectory")}
+    cav = {r["setting"]: float(r["wall_time_per_shot_s"]) for r in by("cavity")}
+    fe = [(r["setting"].split(" elements")[0], float(r["wall_time_per_shot_s"])) for r in by("fe")]
+    do1 = {p: json.loads(read(f"figures/timing/fe_do1_{p}.json")) for p in ("full", "ci")}
+    val = {p: {r["level"]: r for r in _rows(read, f"figures/timing/validation_levels_{p}.csv")} for p in ("full", "ci")}
+    mesh = _rows(read, "figures/timing/fe_mesh_study_full.csv")
+    win = _rows(read, "figures/timing/fe_window_full.csv")[0]
+    across = ", ".join(f"{float(r['elements_across_radius']):.0f}" for r in mesh)
+    vf = val["full"]
+    lines = ["| level | wall time per shot | what is timed |", "|---|---|---|",
+             f"| analytic (Eq 9) | {_span(by('analytic')[0]['wall_time_per_shot_s'])} | {by('analytic')[0]['timer']} |",
+             f"| trajectory | {_span(min(traj.values()))}-{_span(max(traj.values()))} over {len(traj)} tolerances "
+             f"({_span(traj['DOP853 rtol 1e-08'])} at the pipeline's 1e-8) | in-process, DOP853, the trajectory tolerance sweep |",
+             f"| cavity | {_span(cav['100 zones'])} at 100 zones | one sigma_n table of 15 expansions and one trajectory: a "
+             "shot on a new concrete |",
+             f"| fe | {', '.join(_span(t) for _, t in fe)} at {', '.join(a for a, _ in fe)} elements across the shank radius "
+             "| mean of the benchmark records of the 12 Table 3 shot jobs (process start, kernel loading and outputs included) |",
+             "", "(`figures/timing/accuracy_cost.csv`, machine: "
+             f"{cost[0]['machine']}.)", "",
+             f"- The DO1 shot at the FE level, in the pipeline's run: {_span(do1['full']['do1_wall_time_s'])} at 8 elements "
+             f"across ({do1['full'].get('do1_mesh_elements', '?')} mesh elements, {do1['full'].get('do1_steps', '?')} steps; "
+             f"`figures/timing/fe_do1_full.json`), {_span(do1['ci']['do1_wall_time_s'])} at the CI's 3 across "
+             "(`figures/timing/fe_do1_ci.json`).",
+             f"- The 25 development shots (`figures/timing/validation_levels_full.csv`): "
+             f"{_span(vf['trajectory']['total_wall_time_s'])} at the trajectory level; {_span(vf['cavity']['total_wall_time_s'])} "
+             f"at the cavity level, its tables included (median {_span(vf['cavity']['median_wall_time_per_shot_s'])} per shot); "
+             f"{_span(vf['fe']['total_wall_time_s'])} at the fe level (median {_span(vf['fe']['median_wall_time_per_shot_s'])}, "
+             f"largest {_span(vf['fe']['max_wall_time_per_shot_s'])} per shot); at the CI's mesh the fe level took "
+             f"{_span(val['ci']['fe']['total_wall_time_s'])} (`figures/timing/validation_levels_ci.csv`).",
+             "- The FE mesh study (`figures/timing/fe_mesh_study_full.csv`): one DO1 run takes "
+             f"{', '.join(_span(r['wall_time_per_run_s']) for r in mesh)} at "
+             f"{across} elements across, and its "
+             f"failure-strain calibration {', '.join(_span(r['calibration_wall_time_s']) for r in mesh)}.",
+             f"- The moving window (`figures/timing/fe_window_full.csv`): the {win['realisations']} windowed DO1 runs took "
+             f"{_span(win['wall_window_s'])}, the {win['realisations']} on the whole domain {_span(win['wall_whole_s'])}, a "
+             f"ratio of {float(win['wall_ratio']):.2f}."]
+    return "\n".join(lines) + "\n"
+
+
 def rebuild(read) -> str:
     """The last recorded fresh-clone runs of each target."""
     rows = _rows(read, "figures/timing/fresh_clone.csv")
@@ -160,7 +204,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times}
 
 
 def render(text: str, read) -> str:

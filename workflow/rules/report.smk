@@ -3,7 +3,8 @@
 
 
 rule report:
-    input: **task("tasks.report"), source="workflow/report.py", findings=config["findings"], outputs=REPORT_INPUTS,
+    input: **task("tasks.report"), source="workflow/report.py", reference=config["reference"], findings=config["findings"],
+           outputs=REPORT_INPUTS,
            timing=["figures/timing/pipeline_rules.csv", "figures/timing/pipeline_stages.csv"],
            fits=[GEOMETRY_RESULTS["do1"], "results/calibration/do1.json", "results/calibration/cavity_do1.json",
                  "results/geometry/diameter_450kg.json", "results/scenes/sec22_450kg.csv"],

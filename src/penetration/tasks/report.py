@@ -2,16 +2,21 @@
 
 Executed in a Python kernel (nbclient; no notebook server) in the pipeline's directory, with the FE mesh
 profile of the build in the environment (PENETRATION_FE_PROFILE); a cell that raises fails the rule.
-Rendered without the code (a reader's document), every figure embedded, so the file stands alone.
+Rendered without the code (a reader's document), every figure embedded and no script, stylesheet or font fetched
+from the network (nbconvert's lab template less its require.js, MathJax and mermaid loaders), so the file stands alone
+and reads the same offline. Its few equations are HTML text (sub- and superscripts, Unicode), which needs no
+typesetting script; its page title is the notebook's `title` metadata (the paper's).
 """
 from __future__ import annotations
 
 import base64
+import html as htmllib
 import os
 import re
 from pathlib import Path
 
 import jupytext
+from jinja2 import DictLoader
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 
@@ -29,16 +34,35 @@ def report(inputs, outputs, params):
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", []) if o.get("output_type") == "error"]
     if errors:
         raise RuntimeError(f"{len(errors)} cells of {inputs.source} raised: {errors[0].get('ename')}: {errors[0].get('evalue')}")
-    html, _ = HTMLExporter(exclude_input=True, exclude_input_prompt=True, exclude_output_prompt=True).from_notebook_node(nb)
+    html = rendered_html(nb)
     problems = embedding_problems(html, Path("."), params.profile)
     if problems:
-        raise RuntimeError(f"{inputs.source} renders a report that does not show the figures as built: {problems}")
+        raise RuntimeError(f"{inputs.source} renders a report that is not the build's, whole and offline: {problems}")
     write_text(outputs.html, html)
     print(f"{len(nb.cells)} cells executed; {len(html) / 1e6:.1f} MB of HTML")
 
 
+# nbconvert's lab page without the loaders it fetches from a CDN (require.js, MathJax, mermaid): nothing in the
+# report needs them (no widgets, no diagrams; equations are HTML text)
+OFFLINE_TEMPLATE = """{%- extends 'index.html.j2' -%}
+{%- block html_head_js -%}{%- endblock html_head_js -%}
+{%- block html_head_js_mathjax -%}{%- endblock html_head_js_mathjax -%}
+{%- block html_head_js_mermaidjs -%}{%- endblock html_head_js_mermaidjs -%}
+"""
+
+
+def rendered_html(nb):
+    """The notebook as one HTML page without its code, prompts or any resource loaded from the network."""
+    exporter = HTMLExporter(template_name="lab", template_file="offline.html.j2",
+                            extra_loaders=[DictLoader({"offline.html.j2": OFFLINE_TEMPLATE})],
+                            exclude_input=True, exclude_input_prompt=True, exclude_output_prompt=True)
+    return exporter.from_notebook_node(nb)[0]
+
+
+# the page title: the paper's (the notebook's `title` metadata, in the header of workflow/report.py)
+TITLE = "Replication of Liu, Pi & Huang (2015), Penetration performance of double-ogive-nose projectiles"
 # sections the report must have (a cell that lost one fails the build)
-SECTIONS = ("At a glance", "The paper's conclusions", "internal contradictions", "Every figure and table",
+SECTIONS = ("The bottom line", "At a glance", "The paper's conclusions", "internal contradictions", "Every figure and table",
             "Inferred and calibrated inputs", "Users' shots at every level")
 
 
@@ -53,10 +77,33 @@ def shown_images(html):
     return shown
 
 
+_REMOTE = r"(?:https?:)?//[^\s\"'()<>]+"
+# what a browser fetches on opening the page: src/href/data of loading tags, CSS url() and @import, JS import()
+_LOADS = (rf"<(?:script|link|img|iframe|source|embed|audio|video|track|object)\b[^>]*?\b(?:src|href|data|srcset)\s*=\s*[\"']?({_REMOTE})",
+          rf"url\(\s*[\"']?({_REMOTE})", rf"@import\s+[\"']({_REMOTE})", rf"\bimport\s*\(\s*[\"'`]({_REMOTE})")
+
+
+def network_resources(html):
+    """Every URL the page would fetch from the network when opened (an <a href> is a link, not a load)."""
+    return sorted({m for pattern in _LOADS for m in re.findall(pattern, html, flags=re.IGNORECASE)})
+
+
+def page_title(html):
+    title = re.search(r"<title>(.*?)</title>", html, flags=re.DOTALL)
+    return htmllib.unescape(title.group(1)).strip() if title else None
+
+
+def unset_tex(html):
+    """LaTeX left in the page's text, which no script typesets offline ($...\\cmd...$, $$, \\( or \\[)."""
+    text = re.sub(r"<(script|style)\b.*?</\1>", "", html, flags=re.DOTALL | re.IGNORECASE)
+    return re.findall(r"\$\$|\\\(|\\\[|\$[^$<>\n]*\\[A-Za-z]+[^$<>\n]*\$", text)
+
+
 def embedding_problems(html, root: Path, profile):
     """What is wrong with a rendered report: a PNG of the build's folders (figures, figures/fe, the profile's,
     figures/timing; the on-demand sweep aside) not shown, a shown PNG that is not the file on disk, a missing
-    section, error output. An empty list when none."""
+    section, error output, a resource fetched from the network, LaTeX left for a script, a title not the paper's.
+    An empty list when none."""
     shown = shown_images(html)
     expected = {p.relative_to(root).as_posix() for d in ("figures", "figures/fe", f"figures/fe/{profile}", "figures/timing")
                 for p in (root / d).glob("*.png") if not p.name.startswith("sweep")}
@@ -66,4 +113,8 @@ def embedding_problems(html, root: Path, profile):
     problems += [f"section {s!r} missing" for s in SECTIONS if s not in html]
     if "Traceback" in html or 'data-mime-type="application/vnd.jupyter.stderr"' in html:
         problems.append("error output in the report")
+    problems += [f"{url} loaded from the network" for url in network_resources(html)]
+    problems += [f"LaTeX {tex!r} needs a typesetting script" for tex in unset_tex(html)]
+    if page_title(html) != TITLE:
+        problems.append(f"page title {page_title(html)!r} is not the paper's")
     return problems
