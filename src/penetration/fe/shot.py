@@ -130,6 +130,20 @@ def nose_pressure(model, projectile, nose, h):
     return float(np.max(-(srr * nr_ ** 2 + szz * nz_ ** 2 + 2 * srz * nr_ * nz_)))
 
 
+def tunnel_eroded_share(model, radius, depth):
+    """Share of the tunnel's initial volume (elements whose initial centre lies within ``radius`` of the axis and
+    between the surface and ``depth``) that erosion deleted: 1 when the tunnel was all deleted, 0 when all of
+    it was pushed aside. Volumes 2 pi r0 A0 from the initial tensor grid."""
+    g = model.grid
+    r, z = g.r, g.z
+    rc, zc = 0.5 * (r[1:] + r[:-1]), 0.5 * (z[1:] + z[:-1])
+    vol = 2 * np.pi * np.outer(np.diff(z), rc * np.diff(r))  # [row j, column i], as the elements are numbered
+    inside = (zc[:, None] < depth) & (zc[:, None] > 0) & (rc[None, :] < radius)
+    eroded = np.isin(model.alive.reshape(g.nz, g.nr), (0, 2))
+    total = vol[inside].sum()
+    return float(vol[inside & eroded].sum() / total) if total > 0 else math.nan
+
+
 @dataclass
 class ShotResult:
     depth: float
@@ -145,6 +159,7 @@ class ShotResult:
     max_nose_pressure: float
     model: Model | None = None
     attempts: int = 1
+    tunnel_eroded_share: float = math.nan
 
     def summary(self):
         last = self.audit[-1]
@@ -156,7 +171,8 @@ class ShotResult:
                 "eroded_mass_kg": self.eroded_mass, "max_nose_pressure_pa": self.max_nose_pressure,
                 "energy_error_max": worst, "energy_error_final": last["energy_error"],
                 "momentum_error_final": last["momentum_error"], "hourglass_over_internal": last["hourglass"] / max(ie, 1e-300),
-                "contact_loss_fraction": last["contact"] / max(last["total"], 1e-300), "attempts": self.attempts}
+                "contact_loss_fraction": last["contact"] / max(last["total"], 1e-300), "attempts": self.attempts,
+                "tunnel_eroded_share": self.tunnel_eroded_share}
 
 
 def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), target: TargetSpec = TargetSpec(),
@@ -190,5 +206,6 @@ def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), ta
     out = ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
                      {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
                       "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
-                     model.eroded_mass, pmax[0], model if keep_model else None, attempt)
+                     model.eroded_mass, pmax[0], model if keep_model else None, attempt,
+                     tunnel_eroded_share(model, nose.radius, float(proj.Zt)))
     return out

@@ -53,6 +53,7 @@ def fe_table3(inputs, outputs, params):
                      "calibration_nose": s.nose in calibrated, "velocity_minus_calibration_ms": v - cal["vs"],
                      "time_to_rest_s": s.time_to_rest_s,
                      "peak_deceleration_m_s2": s.peak_deceleration_m_s2, "eroded_mass_kg": s.eroded_mass_kg,
+                     "tunnel_eroded_share": s.tunnel_eroded_share,
                      "energy_error_max": s.energy_error_max,
                      "hourglass_over_internal": s.hourglass_over_internal, "element_steps": s.element_steps, "failure_strain": s.failure_strain, "element_size_m": s.element_size})
     t = pd.DataFrame(rows)
@@ -249,7 +250,8 @@ def fe_summary(inputs, outputs, params):
            "nose_pressure": load_json(inputs.pressure),
            "do1_depth_semi_infinite_m": do1["depth_m"], "do1_depth_block_m": block["depth_m"],
            "rear_face_effect_m": block["depth_m"] - do1["depth_m"],
-           "do1_eroded_mass_kg": do1["eroded_mass_kg"], "do1_element_steps": do1["element_steps"],
+           "do1_eroded_mass_kg": do1["eroded_mass_kg"], "do1_tunnel_eroded_share": do1["tunnel_eroded_share"],
+           "do1_element_steps": do1["element_steps"],
            "do1_status": do1["status"], "block_status": block["status"]}
     write_json(out, outputs.json)
     # (no time per element-step: element_steps counts every element of the mesh at every step, and the moving
