@@ -290,7 +290,8 @@ def fe_ensemble_members(profile):
     return [f"results/fe/{profile}/ensemble/{nose}_{v}_m{k}.json" for nose, v in FE_SCENES["table3"] for k in range(1, n + 1)]
 
 
-REAR_FACE_SCENES = ("do1", "do1_block")
+# the rear-face study's chain of targets, from the semi-infinite target to the block, one change a step
+REAR_FACE_SCENES = ("do1", "do1_depth54", "do1_depth54_free_bottom", "do1_block_absorbing_sides", "do1_block")
 
 
 def fe_rear_face_members(profile):
@@ -340,11 +341,14 @@ rule fe_contrast_ensemble:
 
 
 rule fe_rear_face:
-    input: **task("figures.fe_level"), shots=[p.format(profile="full") for scene in REAR_FACE_SCENES for p in fe_shots(scene)],
+    input: **task("tasks.fe_rear_face"),
+           shots=[p.format(profile="full") for scene in REAR_FACE_SCENES for p in fe_shots(scene)],
+           histories=[p.format(profile="full") for scene in REAR_FACE_SCENES for p in fe_histories(scene)],
            members=fe_rear_face_members("full"), cal=fe_calibration("full"),
     output: png=report("figures/fe/rear_face.png", caption="../report/captions/fe_rear_face.rst", category="Finite-element level"),
             csv="figures/fe/rear_face.csv", members="figures/fe/rear_face_members.csv",
-    params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"],
+            effects="figures/fe/rear_face_effects.csv",
+    params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"], chain=REAR_FACE_SCENES,
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_rear_face.tsv"

@@ -4,9 +4,11 @@ Target (``TargetSpec``): ``semi_infinite`` (the paper's simulation, text
 l.240: "a circular semi-infinite target") is a cylinder of radius
 ``radius`` with non-reflecting lateral and bottom boundaries, deep enough
 for the shot (a run that reaches the bottom is repeated on a domain twice as
-deep); ``block`` is the experiment's 3.6 m x 3.6 m x 5.4 m block as a
+deep, unless the depth is set); ``block`` is the experiment's 3.6 m x 3.6 m x 5.4 m block as a
 cylinder of the same cross-section area (radius 3.6/sqrt(pi) = 2.031 m)
-and depth 5.4 m with free faces.
+and depth 5.4 m with free faces. The lateral and bottom faces can be set apart
+(``lateral``, ``bottom``: non-reflecting or free), so that the rear-face study
+changes one thing at a time between the two.
 
 Moving window (``window_ahead``, ``window_tail``): only the rows from
 window_tail behind the projectile's tail to window_ahead ahead of its tip are
@@ -35,17 +37,31 @@ G0 = 9.80665
 BLOCK_RADIUS = 3.6 / math.sqrt(math.pi)  # equal cross-section area with the 3.6 m x 3.6 m block
 
 
+BOUNDARIES = ("non_reflecting", "free")
+
+
 @dataclass(frozen=True)
 class TargetSpec:
     kind: str = "semi_infinite"
     radius: float = 1.2          # m (block: BLOCK_RADIUS)
     depth: float | None = None   # m; None: from the expected depth (semi-infinite) or 5.4 (block)
+    lateral: str | None = None   # the lateral face, one of BOUNDARIES; None: by kind (semi-infinite non-reflecting)
+    bottom: str | None = None    # the bottom face, likewise
 
     def __post_init__(self):
         if self.kind not in ("semi_infinite", "block"):
             raise ParameterError("fe target", "kind", self.kind, "semi_infinite or block")
         if not self.radius > 0:
             raise ParameterError("fe target", "radius", self.radius, "> 0 (m)")
+        if self.depth is not None and not self.depth > 0:
+            raise ParameterError("fe target", "depth", self.depth, "> 0 (m) or None")
+        for name in ("lateral", "bottom"):
+            if getattr(self, name) not in (None, *BOUNDARIES):
+                raise ParameterError("fe target", name, getattr(self, name), f"one of {BOUNDARIES} or None")
+
+    def boundary(self, face):
+        """The boundary of a face ('lateral' or 'bottom'): as set, else free for the block, non-reflecting else."""
+        return getattr(self, face) or ("free" if self.kind == "block" else "non_reflecting")
 
 
 @dataclass(frozen=True)
@@ -75,7 +91,7 @@ def mesh_spec(nose, settings: Settings, target: TargetSpec, expected_depth) -> M
 
 
 def model_for(nose, settings: Settings, target: TargetSpec, material, expected_depth):
-    lateral = bottom = "free" if target.kind == "block" else "non_reflecting"
+    lateral, bottom = target.boundary("lateral"), target.boundary("bottom")
     spec = mesh_spec(nose, settings, target, expected_depth)
     behind = None if settings.window_tail is None else settings.body_length + settings.window_tail
     controls = replace(settings.controls, lateral=lateral, bottom=bottom, output_interval=settings.output_interval,
@@ -195,7 +211,7 @@ def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), ta
         t0 = time.perf_counter()
         res = run(model, proj, callback=sample, log=log)
         wall = time.perf_counter() - t0
-        if res.status == "perforated" and target.kind == "semi_infinite" and attempt < max_attempts:
+        if res.status == "perforated" and target.kind == "semi_infinite" and target.depth is None and attempt < max_attempts:
             expected *= 2.0
             if log:
                 log(f"reached the bottom of a {model.z.max():.2f} m domain: repeating {2:.0f} times deeper")

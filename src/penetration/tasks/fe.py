@@ -43,10 +43,12 @@ def fe_settings(cfg, profile, element_size=None) -> Settings:
 
 
 def _target(fe, cfg):
+    """The scene's target: its kind's radius and depth unless the scene sets them, and its faces' boundaries."""
     kind = fe.get("target", "semi_infinite")
-    if kind == "block":
-        return TargetSpec("block", fe.get("target_radius", BLOCK_RADIUS), cfg["block_depth"])
-    return TargetSpec("semi_infinite", fe.get("target_radius", cfg["target_radius"]))
+    block = kind == "block"
+    return TargetSpec(kind, fe.get("target_radius", BLOCK_RADIUS if block else cfg["target_radius"]),
+                      fe.get("target_depth", cfg["block_depth"] if block else None),
+                      fe.get("lateral_boundary"), fe.get("bottom_boundary"))
 
 
 def _check_table1_target(sc, refs):
