@@ -128,7 +128,7 @@ STUDY_OUTPUTS = [
     "figures/fe/contrast_band_meshes.csv", "figures/fe/contrast_extrapolation.png", "figures/fe/contrast_extrapolation.csv",
     "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
-    "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png",
+    "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",
     # every level on the 25 development shots (the validated accuracy the command line reports), at both meshes
     *expand("figures/fe/{profile}/validation_levels.png", profile=["full", "ci"]),
     *expand("figures/timing/validation_levels_{profile}.csv", profile=["full", "ci"]),

@@ -215,6 +215,22 @@ CAVITY_SECONDS_AT_100_ZONES = 0.11
 CAVITY_TABLE_BUDGET_S = 600.0
 
 
+def machine_name() -> str:
+    """The CPU model (/proc/cpuinfo where there is one), the number of CPUs and the Python version, for timing
+    records."""
+    import platform
+
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{cpu}, {os.cpu_count()} CPUs, Python {platform.python_version()}"
+
+
 def machine_memory() -> int:
     """Bytes of physical memory of this machine (os.sysconf)."""
     return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")

@@ -167,6 +167,24 @@ def wall_times(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def accuracy(read) -> str:
+    """Every level's prediction errors beside its cost (figures/accuracy_prediction.csv)."""
+    cost = {(r["level"], r["setting"]): float(r["wall_time_per_shot_s"])
+            for r in _rows(read, "figures/timing/accuracy_cost.csv")}
+    fmt = lambda x, scale, unit: "" if x == "" else f"{scale * float(x):.1f}{unit}"
+    lines = ["| level | setting | wall time per shot | Table 3, other noses: mean abs. deviation | contrasts: mean "
+             "abs. difference | development shots: median abs. error |", "|---|---|---|---|---|---|"]
+    for r in _rows(read, "figures/accuracy_prediction.csv"):
+        t = cost.get((r["level"], r["setting"]))
+        lines.append(f"| {r['level']} | {r['setting']} | {_span(t) if t is not None else ''} | "
+                     f"{fmt(r['table3_other_noses_mean_abs_rel_dev'], 100, ' %')} | "
+                     f"{fmt(r['contrast_mean_abs_points'], 1, ' points')} | "
+                     f"{fmt(r['validation_median_abs_rel_err'], 100, ' %')} |")
+    lines += ["", "(`figures/accuracy_prediction.csv`; wall times `figures/timing/accuracy_cost.csv`; an empty cell: "
+              "not computed at that setting.)"]
+    return "\n".join(lines) + "\n"
+
+
 def rebuild(read) -> str:
     """The last recorded fresh-clone runs of each target."""
     rows = _rows(read, "figures/timing/fresh_clone.csv")
@@ -204,7 +222,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy}
 
 
 def render(text: str, read) -> str:

@@ -329,14 +329,19 @@ rule accuracy_cost:
     script: "../scripts/run_task.py"
 
 
-rule accuracy_cost_figure:
-    input: **task("figures.accuracy_cost"), csv="figures/accuracy_cost.csv", timing="figures/timing/accuracy_cost.csv",
-    output: png=report("figures/timing/accuracy_cost.png", caption="../report/captions/accuracy_cost.rst", category="Timing (machine-dependent)"),
-    params: dpi=config["figures"]["dpi"],
+rule accuracy_prediction:
+    input: **task("tasks.accuracy"), timing="figures/timing/accuracy_cost.csv", table3="figures/table3.csv",
+           contrasts="figures/nose_contrasts_table.csv",
+           fe_tables=expand("figures/fe/{profile}/table3.csv", profile=ACCURACY_PROFILES),
+           fe_ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=ACCURACY_PROFILES),
+           validation=expand("figures/fe/{profile}/validation_levels_summary.csv", profile=["full", "ci"]),
+    output: csv="figures/accuracy_prediction.csv",
+            png=report("figures/timing/accuracy_cost.png", caption="../report/captions/accuracy_cost.rst", category="Timing (machine-dependent)"),
+    params: dpi=config["figures"]["dpi"], fe_profiles=ACCURACY_PROFILES, validation_profiles=["full", "ci"],
     threads: 1
     resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/accuracy_cost_figure.tsv"
-    log: "results/logs/accuracy_cost_figure.log",
+    benchmark: "results/benchmarks/accuracy_prediction.tsv"
+    log: "results/logs/accuracy_prediction.log",
     script: "../scripts/run_task.py"
 
 

@@ -1,55 +1,59 @@
-"""Accuracy against cost over the fidelity ladder (the data from tasks.levels.accuracy_cost)."""
+"""Accuracy against cost over the fidelity ladder: prediction errors (tasks.accuracy) against wall time per shot."""
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 
-from ..io import task
 from .common import figure, save
 
 STYLE = {"analytic": ("tab:gray", "s"), "trajectory": ("tab:orange", "^"), "cavity": ("tab:blue", "o"),
          "fe": ("tab:green", "D")}
+PANELS = (("table3_other_noses_mean_abs_rel_dev", 100, "mean |deviation| (%)",
+           "Table 3 of the paper's simulation,\nthe noses not calibrated on (CRH 4.5, CRH 3: 8 cells)"),
+          ("contrast_mean_abs_points", 1, "mean |difference| (points)",
+           "the paper's simulated nose contrasts\n(3 contrasts x 4 velocities)"),
+          ("validation_median_abs_rel_err", 100, "median |error| (%)",
+           "the 25 published development shots\n(no level fitted to them)"))
 
 
-@task
-def accuracy_cost_figure(inputs, outputs, params):
-    d = pd.read_csv(inputs.csv).merge(pd.read_csv(inputs.timing), on=["level", "setting"])
-    fig, axes = figure(3, 4.9, 4.2)
-    ax_sim, ax_do1, ax_self = axes
-    for level, g in d.groupby("level", sort=False):
-        c, mk = STYLE[level]
-        t = g.wall_time_per_shot_s
-        sim = g.dropna(subset=["table3_mean_abs_rel_dev"])
-        if level == "analytic":
-            for row in sim.itertuples():
-                ax_sim.plot(row.wall_time_per_shot_s, 100 * row.table3_mean_abs_rel_dev, mk, color=c,
-                            mfc=c if not row.calibrated_on_do1 else "white", label=f"analytic, {row.setting}")
-        elif len(sim):
-            ax_sim.plot(sim.wall_time_per_shot_s, 100 * sim.table3_mean_abs_rel_dev, mk + "-", color=c, mfc="white",
-                        label=f"{level}" + (" (per mesh)" if level == "fe" else ""))
-        do1 = g.dropna(subset=["do1_rel_error"])
-        for row in do1.itertuples():
-            ax_do1.plot(row.wall_time_per_shot_s, max(abs(row.do1_rel_error), 1e-12), mk, color=c,
-                        mfc="white" if row.calibrated_on_do1 else c)
-        self_ = g.dropna(subset=["self_rel_error"])
-        self_ = self_[self_.self_rel_error > 0]
-        if len(self_):
-            ax_self.plot(self_.wall_time_per_shot_s, self_.self_rel_error, mk + "-", color=c, label=level)
-        if level == "fe":
+def _label(row):
+    if row.level == "fe":
+        return row.setting.split(" elements")[0] + " across"
+    return {"S stated (Li & Chen)": "S stated", "S calibrated on DO1": "S on DO1"}.get(row.setting, "")
+
+
+def accuracy_cost_drawing(d, path, dpi):
+    """One panel per prediction error; each level's settings against their wall time per shot (log scale); an
+    analytic setting calibrated on DO1 hollow."""
+    fig, axes = figure(3, 4.2, 4.0)
+    for ax, (column, scale, ylabel, title) in zip(axes, PANELS):
+        for level, g in d.dropna(subset=[column, "wall_time_per_shot_s"]).groupby("level", sort=False):
+            c, mk = STYLE[level]
+            g = g.sort_values("wall_time_per_shot_s")
+            if level == "fe":
+                ax.plot(g.wall_time_per_shot_s, scale * g[column], mk + "-", color=c, ms=6, label="fe (per mesh)")
             for row in g.itertuples():
-                ax_sim.annotate(row.setting.split(" (")[0].replace(" elements across", "/a"),
-                                (row.wall_time_per_shot_s, 100 * row.table3_mean_abs_rel_dev), fontsize=6,
-                                xytext=(3, 3), textcoords="offset points")
-    ax_sim.set(xscale="log", xlabel="wall time per shot (s)", ylabel="mean |deviation| (%)",
-               title="against the paper's simulated Table 3 (12 cells)\n(trajectory: the analytic level's model)")
-    ax_sim.set_ylim(0, 1.15 * ax_sim.get_ylim()[1])
-    ax_sim.legend(fontsize=6, loc="center right")
-    ax_do1.set(xscale="log", yscale="log", xlabel="wall time per shot (s)", ylabel="|relative error|",
-               title="against the DO1 shot (5.1 m)\n(hollow: calibrated on it, a residual)")
-    ax_self.set(xscale="log", yscale="log", xlabel="wall time per shot (s)", ylabel="|relative error|",
-                title="each level's convergence study\n(against its finest setting; trajectory: against Eq 9)")
-    ax_self.legend(fontsize=7)
+                if level != "fe":
+                    hollow = "calibrated" in row.setting
+                    ax.plot(row.wall_time_per_shot_s, scale * getattr(row, column), mk, color=c, ms=6,
+                            mfc="white" if hollow else c, label=f"{level}" + (" (hollow: S calibrated on DO1)"
+                                                                              if hollow else ""))
+            for k, row in enumerate(g.itertuples()):
+                text = _label(row)
+                if text:  # the FE meshes' labels alternate above and below their points
+                    ax.annotate(text, (row.wall_time_per_shot_s, scale * getattr(row, column)), fontsize=7,
+                                xytext=(4, 3 if level != "fe" or k % 2 == 0 else -11), textcoords="offset points")
+        ax.set(xscale="log", xlabel="wall time per shot (s)", ylabel=ylabel, title=title)
+        ax.title.set_fontsize(9)
+        top = ax.get_ylim()[1]
+        ax.set_ylim(0, 1.15 * top if np.isfinite(top) else 1)
+    handles, labels = [], []
     for ax in axes:
-        ax.title.set_fontsize(8)
-    fig.suptitle(f"Accuracy against cost over the fidelity ladder (wall times on {d.machine.iloc[0]})", fontsize=9, y=1.04)
-    save(fig, outputs.png, params.dpi)
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=8, bbox_to_anchor=(0.5, -0.04))
+    machine = d.machine.dropna().iloc[0] if "machine" in d and d.machine.notna().any() else "this machine"
+    fig.suptitle(f"Prediction error against cost over the fidelity ladder (wall times on {machine})", fontsize=10, y=1.02)
+    fig.subplots_adjust(wspace=0.3, bottom=0.2)
+    save(fig, path, dpi)

@@ -2,8 +2,6 @@
 from __future__ import annotations
 
 import math
-import os
-import platform
 import time
 from pathlib import Path
 
@@ -12,7 +10,7 @@ import pandas as pd
 
 from .. import reference
 from ..cavity_level import cavity_trajectory, sigma_table
-from ..config import load_with
+from ..config import load_with, machine_name
 from ..dop import penetration_depth
 from ..geometry import make_nose
 from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
@@ -258,8 +256,7 @@ def accuracy_cost(inputs, outputs, params):
                        "timer": f"the benchmark records of the {len(walls)} Table 3 shot jobs (mean; process start, "
                                 "kernel loading and outputs included)"})
     write_csv(pd.DataFrame(rows), outputs.csv)
-    machine = f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}"
-    write_csv(pd.DataFrame(timing).assign(machine=machine), outputs.timing)
+    write_csv(pd.DataFrame(timing).assign(machine=machine_name()), outputs.timing)
 
 
 SWEEP_LENGTH_KEYS = ("length", "tip_radius")  # nose keys given in shank radii; the others (psi) are dimensionless
