@@ -126,6 +126,7 @@ STUDY_OUTPUTS = [
     "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv", "figures/fe/contrast_ensemble_depths.csv",
     "figures/fe/contrast_band.png", "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
     "figures/fe/contrast_band_meshes.csv", "figures/fe/contrast_extrapolation.png", "figures/fe/contrast_extrapolation.csv",
+    "figures/fe/contrast_extrapolation_depths.csv",
     "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
     "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",

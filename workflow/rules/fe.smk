@@ -132,7 +132,8 @@ rule fe_fig14:
 rule fe_fig15:
     input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("fig15"),
     output: png=report(fe_out("fig15.png"), caption="../report/captions/fe_fig15.rst", category="Finite-element level"), csv=fe_out("fig15.csv"),
-    params: dpi=config["figures"]["dpi"],
+    params: dpi=config["figures"]["dpi"], limit=study_input("figures/fe/contrast_extrapolation_depths.csv"),
+            profile=lambda w: w.profile,
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_fig15_{profile}.tsv"
@@ -274,8 +275,9 @@ rule fe_contrast_band:
 rule fe_contrast_extrapolation:
     input: **task("tasks.fe_convergence"), meshes="figures/fe/contrast_band_meshes.csv",
            singles="figures/fe/contrast_convergence.csv",
+           tables=expand("figures/fe/{profile}/table3.csv", profile=BAND_MESHES),
     output: png=report("figures/fe/contrast_extrapolation.png", caption="../report/captions/contrast_extrapolation.rst", category="Finite-element level"),
-            csv="figures/fe/contrast_extrapolation.csv",
+            csv="figures/fe/contrast_extrapolation.csv", depths="figures/fe/contrast_extrapolation_depths.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_band"]["confidence"],
     threads: 1
     resources: mem_mb=1000, runtime=5

@@ -168,8 +168,14 @@ def fe_fig15(inputs, outputs, params):
         ax.plot(*zip(*pts), **{**PAPER_STYLE, "color": color(nose)}, label=f"{LABELS[nose]} (paper's simulation, Table 3)")
     ax.plot([refs["table2.velocity"].si], [refs["table2.dop"].si / d], marker="*", ms=10, color="black", ls="none",
             label="experiment DO1")
+    lim = committed_study(params.limit)
+    for k, (nose, g) in enumerate(lim.groupby("nose")):
+        ax.errorbar(g.velocity_ms + 12 * (k - 1), g.depth_at_zero_size_m / d,
+                    yerr=[(g.depth_at_zero_size_m - g.interval_low_m) / d, (g.interval_high_m - g.depth_at_zero_size_m) / d],
+                    fmt="s", ms=3, mfc="white", color=color(nose), capsize=2, lw=0.8,
+                    label=f"{LABELS[nose]}: at zero element size, {100 * g.confidence.iloc[0]:.0f} % interval (a study)")
     ax.set(xlabel="striking velocity (m/s)", ylabel="Pd/d", xlim=(400, 1400), ylim=(0, 90),
-           title="Fig 15 (FE level): failure strain calibrated on DO1")
+           title=f"Fig 15 (FE level, {params.profile} mesh): failure strain calibrated on DO1")
     ax.legend(fontsize=6)
     save(fig, outputs.png, params.dpi)
 

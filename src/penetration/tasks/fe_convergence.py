@@ -46,13 +46,31 @@ def extrapolation_rows(meshes, singles, confidence):
     return pd.DataFrame(rows)
 
 
+def depth_rows(tables, confidence):
+    """One row per Table 3 cell (velocity, nose): the FE depth over the meshes (``tables``: each mesh's
+    table3.csv) fitted against the element size and extrapolated to zero, with its interval."""
+    t = pd.concat(tables, ignore_index=True)
+    rows = []
+    for (v, nose), g in t.groupby(["velocity_ms", "nose"], sort=True):
+        fit = size_regression(g.element_size_m.to_numpy(), g.fe_m.to_numpy(), confidence)
+        paper = float(g.paper_sim_m.iloc[0])
+        rows.append({"velocity_ms": int(v), "nose": nose, "meshes": fit.n, "element_size_min_m": fit.h_min,
+                     "element_size_max_m": fit.h_max, "depth_at_zero_size_m": fit.f0, "interval_low_m": fit.f0_low,
+                     "interval_high_m": fit.f0_high, "confidence": fit.confidence, "scatter_m": fit.scatter,
+                     "mean_over_meshes_m": fit.mean, "paper_sim_m": paper,
+                     "zero_size_rel_dev_pct": 100 * (fit.f0 / paper - 1), "paper_inside_interval": fit.inside(paper)})
+    return pd.DataFrame(rows)
+
+
 @task
 def fe_contrast_extrapolation(inputs, outputs, params):
-    """The FE nose contrasts at zero element size: regression over the band meshes, beside the single meshes."""
+    """The FE nose contrasts and depths at zero element size: regression over the band meshes, beside the single
+    meshes."""
     meshes = pd.read_csv(inputs.meshes)
     singles = pd.read_csv(inputs.singles)
     t = extrapolation_rows(meshes, singles, params.confidence)
     write_csv(t, outputs.csv)
+    write_csv(depth_rows([pd.read_csv(f) for f in inputs.tables], params.confidence), outputs.depths)
     contrast_extrapolation_figure(t, meshes, singles, outputs.png, params.dpi)
     for r in t.itertuples():
         print(f"{r.contrast:14s} {r.velocity_ms:5d} m/s: {r.ratio_at_zero_size:.3f} [{r.interval_low:.3f}, "
