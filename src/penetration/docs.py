@@ -185,6 +185,24 @@ def accuracy(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _g(x) -> str:
+    return "" if x in ("", "nan") else ("-inf" if x == "-inf" else "inf" if x == "inf" else f"{float(x):.4g}")
+
+
+def verification(read) -> str:
+    """Every check of the FE and cavity verification problems: ours, the reference, the accepted interval."""
+    lines = []
+    for path in ("figures/fe_verification.csv", "figures/cavity_verification.csv"):
+        lines += [f"`{path}`:", "", "| problem | quantity | ours | reference | accepted | unit | source | holds |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for r in _rows(read, path):
+            cell = {k: v.replace("|", "\\|") for k, v in r.items()}
+            lines.append(f"| {cell['problem']} | {cell['quantity']} | {_g(r['ours'])} | {_g(r['reference'])} | "
+                         f"[{_g(r['low'])}, {_g(r['high'])}] | {cell['unit']} | {cell['source']} | {r['holds']} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
 def rebuild(read) -> str:
     """The last recorded fresh-clone runs of each target."""
     rows = _rows(read, "figures/timing/fresh_clone.csv")
@@ -222,7 +240,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification}
 
 
 def render(text: str, read) -> str:
