@@ -185,6 +185,17 @@ def accuracy(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def erosion(read) -> str:
+    """How the FE level's tunnel forms: the eroded share of its volume in the Table 3 shots and DO1."""
+    t = _rows(read, "figures/fe/full/table3.csv")
+    share = [float(r["tunnel_eroded_share"]) for r in t]
+    do1 = json.loads(read("figures/fe/full/summary.json"))
+    return (f"At the FE level (8 elements across) erosion deletes {100 * min(share):.0f}-{100 * max(share):.0f} % of the "
+            f"tunnel's volume in the twelve Table 3 shots and {100 * do1['do1_tunnel_eroded_share']:.0f} % in DO1 "
+            f"({do1['do1_eroded_mass_kg']:.0f} kg; `figures/fe/full/table3.csv`, `tunnel_eroded_share`; "
+            "`figures/fe/full/summary.json`).\n")
+
+
 def _g(x) -> str:
     return "" if x in ("", "nan") else ("-inf" if x == "-inf" else "inf" if x == "inf" else f"{float(x):.4g}")
 
@@ -240,7 +251,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion}
 
 
 def render(text: str, read) -> str:
