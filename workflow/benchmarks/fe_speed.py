@@ -199,6 +199,9 @@ def main():
     ap.add_argument("--steps", type=int, default=200, help="steps per timed batch (default 200)")
     ap.add_argument("--repeat", type=int, default=3, help="batches per state; the best is printed (default 3)")
     ap.add_argument("--do1", action="store_true", help="also time the DO1 shot at the default mesh (needs results/fe/full)")
+    ap.add_argument("--record", default="figures/timing/fe_speed.csv",
+                    help="CSV the run's figures are appended to, one row per state (default figures/timing/fe_speed.csv; "
+                         "'' for none)")
     args = ap.parse_args()
     numba.set_num_threads(args.threads)
     llc = last_level_cache()
@@ -312,6 +315,32 @@ def main():
     for label, per in times.items():
         met = [target for target, hit in (("30 ns", per <= 30e-9), ("2 x the floor", per <= 2 * floor)) if hit]
         print(f"  {label}: {per * 1e9:.1f} ns = {per / floor:.2f} x the floor (met: {', '.join(met) or 'neither'})")
+    if args.record:
+        record(args.record, times, floor, bw0, bw1, b, do1_wall=r.wall_time if args.do1 else None, threads=args.threads)
+
+
+def record(path, times, floor, bw0, bw1, bytes_per, do1_wall, threads):
+    """Append the run's figures to the CSV at path: one row per state, with the machine, date and commit."""
+    import csv
+    import datetime
+    import subprocess
+
+    commit = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], capture_output=True, text=True).stdout.strip()
+    date = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+    fields = ["date", "commit", "machine", "isa", "threads", "state", "ns_per_element_step", "floor_ns", "times_floor",
+              "stream_before_GBs", "stream_after_GBs", "bytes_per_element_step", "do1_wall_s"]
+    new = not Path(path).exists()
+    with open(path, "a", newline="") as fh:
+        w = csv.DictWriter(fh, fields, lineterminator="\n")
+        if new:
+            w.writeheader()
+        for label, per in times.items():
+            w.writerow({"date": date, "commit": commit, "machine": machine(), "isa": vector_isa(), "threads": threads,
+                        "state": label, "ns_per_element_step": f"{per * 1e9:.2f}", "floor_ns": f"{floor * 1e9:.2f}",
+                        "times_floor": f"{per / floor:.3f}", "stream_before_GBs": f"{bw0 / 1e9:.2f}",
+                        "stream_after_GBs": f"{bw1 / 1e9:.2f}", "bytes_per_element_step": f"{bytes_per:.0f}",
+                        "do1_wall_s": f"{do1_wall:.2f}" if do1_wall is not None and label == "DO1 window" else ""})
+    print(f"recorded in {path}")
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ shot) with the HJC set scaled to each shot's fc.
 """
 from __future__ import annotations
 
+import matplotlib
 import numpy as np
 import pandas as pd
 
@@ -48,22 +49,32 @@ def validation_levels(inputs, outputs, params):
     summary = pd.DataFrame(rows)
     write_csv(summary, outputs.summary)
     write_csv(pd.DataFrame(timing), outputs.timing)
+    validation_figure(shots, summary, outputs.png, params.dpi, params.law, params.profile)
 
+
+def validation_figure(shots, summary, path, dpi, law, profile):
+    """Predicted against measured depth at each level (shots: the rows of validation_levels.csv)."""
     fig, axes = figure(4, 3.6, 3.9)
     top = 1.1 * max(shots.dop_m.max(), max(shots[f"dop_{lv}_m"].max() for lv in LEVELS))
     line = np.array([0, top])
-    series = [f"{round(m, 1):g} kg, {1e3 * d:.1f} mm" for m, d in zip(shots.mass_kg, shots.diameter_m)]
+    # one marker per projectile series (by calibre: its masses differ only by the shots' own scatter), colour by fc,
+    # the main driver of the errors
+    series = [f"{1e3 * d:.1f} mm, {shots.mass_kg[shots.diameter_m == d].min():.3g}-"
+              f"{shots.mass_kg[shots.diameter_m == d].max():.3g} kg" for d in shots.diameter_m]
+    norm = matplotlib.colors.Normalize(shots.fc_MPa.min(), shots.fc_MPa.max())
     for ax, level, s in zip(axes, LEVELS, summary.itertuples()):
         ax.fill_between(line, 0.8 * line, 1.2 * line, color="0.85", label="+-20 %")
         ax.plot(line, line, "k-", lw=0.8)
-        for (name, g), mk in zip(shots.assign(series=series).groupby("series"), "osd^v<>ph*"):
-            ax.plot(g.dop_m, g[f"dop_{level}_m"], mk, ms=4, label=name)
+        for (name, g), mk in zip(shots.assign(series=series).groupby("series"), "os^dv<>ph*"):
+            sc = ax.scatter(g.dop_m, g[f"dop_{level}_m"], c=g.fc_MPa, cmap="viridis", norm=norm, marker=mk, s=18,
+                            edgecolors="black", linewidths=0.3, label=name)
         ax.text(0.04, 0.96, f"median |error| {100 * s.median_abs_rel_err:.1f} %\n90th pct |error| "
                 f"{100 * s.p90_abs_rel_err:.1f} %\nmean error {100 * s.mean_rel_err:+.1f} %", transform=ax.transAxes,
                 va="top", fontsize=7)
         ax.set(xlabel="measured DOP (m)", ylabel="predicted DOP (m)" if level == "analytic" else None, xlim=(0, top),
-               ylim=(0, top), aspect="equal", title=TITLES[level].format(law=params.law, profile=params.profile))
+               ylim=(0, top), aspect="equal", title=TITLES[level].format(law=law, profile=profile))
         ax.title.set_fontsize(8)
     axes[-1].legend(loc="lower right", fontsize=6)
+    fig.colorbar(sc, ax=list(axes), shrink=0.7, pad=0.01).set_label("target strength fc (MPa)", fontsize=8)
     fig.suptitle(f"{len(shots)} development shots at every level (nothing fitted to them)", fontsize=9)
-    save(fig, outputs.png, params.dpi)
+    save(fig, path, dpi)
