@@ -71,20 +71,36 @@ def quasi_static_hill():
                  float(hill_static_pressure(K, G, Y)), 0.01, "Pa", "Hill (1950) closed form")]
 
 
-def hjc_convergence():
-    """The HJC wall stress (Table 1) at 100 against 200 zones (200 and 1000 m/s) and with the far boundary at 80
-    against 160 radii (300 m/s): changes under 0.5 %."""
+def hjc_convergence(far_v=50.0, zones=100, cap=80.0):
+    """The HJC wall stress (Table 1) at 100 against 200 zones (200 and 1000 m/s), and the far boundary moved out.
+
+    The far boundary binds only where the elastic precursor (c/V final radii) would pass it: at 50 m/s, the
+    slowest expansion of the pipeline's sigma_n table (and of its quasi-static node), the precursor reaches 131
+    radii against the pipeline's boundary at cap = 80 final radii (``workflow/config.yaml``: 100 zones, cap 80).
+    There the boundary is moved from 80 to 160 x^(14/100) = 163 final radii with 14 more zones, the geometric
+    zone ratio kept: the zones near the wall are the same, only the domain grows. The change must stay under
+    0.5 %. (The check it replaces compared caps of 80 and 160 at 300 m/s, where neither binds: the solver saw
+    the same mesh twice and the change was exactly 0. At 50 m/s a boundary at 40 radii costs 0.8 %.)"""
     checks = []
     for V in (200.0, 1000.0):
         coarse, fine = (expand(HJC(), V, mesh=Mesh(zones=z)).wall_stress for z in (100, 200))
         checks.append(below(f"HJC cavity at {V:g} m/s", "|change of the wall stress from 100 to 200 zones| / it",
                             abs(coarse - fine) / fine, 0.005, "1", "convergence in zones"))
-    near_, far = (expand(HJC(), 300.0, mesh=Mesh(zones=120, cap=c)).wall_stress for c in (80.0, 160.0))
-    checks.append(below("HJC cavity at 300 m/s (120 zones)", "|change of the wall stress, far boundary 80 -> 160 radii| / it",
-                        abs(near_ - far) / far, 0.005, "1", "convergence in the domain size"))
+    extra = 14
+    ctl = Controls(tol=1e-6)
+    k = Controls().cycle_ratio
+    near_, far = (expand(HJC(), far_v, mesh=m, controls=ctl).wall_stress
+                  for m in (Mesh(zones=zones, cap=cap), Mesh(zones=zones + extra, xi_max=(k * cap) ** (1 + extra / zones))))
+    checks.append(below(f"HJC cavity at {far_v:g} m/s ({zones} zones, far boundary at {cap:g} final radii)",
+                        f"|change of the wall stress, far boundary {cap:g} -> {(k * cap) ** (1 + extra / zones) / k:.0f} "
+                        "final radii (zone sizes kept)| / it", abs(near_ - far) / far, 0.005, "1",
+                        "convergence in the domain size"))
     return checks
 
 
+PROBLEMS = {p.__name__: p for p in (small_strain_elastic, plastic_similarity, quasi_static_hill, hjc_convergence)}
+
+
 def all_checks(log=print):
-    return run_all([(p.__name__, p) for p in (small_strain_elastic, plastic_similarity, quasi_static_hill, hjc_convergence)],
-                   log)
+    """The checks of every problem."""
+    return run_all(list(PROBLEMS.items()), log)

@@ -4,7 +4,7 @@ them and the pipeline writes them out."""
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 
 @dataclass(frozen=True)
@@ -42,6 +42,31 @@ def near(problem, quantity, ours, reference, rtol, unit, source):
 def below(problem, quantity, ours, bound, unit, source):
     """ours at most bound (no reference value)."""
     return Check(problem, quantity, float(ours), math.nan, -math.inf, bound, unit, source)
+
+
+def shifted(check: Check) -> Check:
+    """The check with a deliberately wrong reference: a two-sided interval moved by its full width (twice its
+    half-width) away from the computed value, a one-sided bound moved past it. A check that can fail does not
+    hold for it; an interval open on both sides cannot fail and is refused."""
+    c = check
+    if math.isfinite(c.low) and math.isfinite(c.high):
+        step = (c.high - c.low) * (1.0 if c.ours <= 0.5 * (c.low + c.high) else -1.0)
+        return replace(c, reference=c.reference + step, low=c.low + step, high=c.high + step)
+    margin = 1e-6 * abs(c.ours) + 1e-300
+    if math.isfinite(c.high):
+        return replace(c, high=c.ours - margin)
+    if math.isfinite(c.low):
+        return replace(c, low=c.ours + margin)
+    raise ValueError(f"{c.problem}: {c.quantity}: an interval open on both sides cannot fail")
+
+
+def identical(check: Check) -> bool:
+    """The computed value is exactly its reference (or exactly 0 for a bound on a quantity whose ideal is 0): a
+    check that may hold by construction, unless its source says the discrete algebra makes it exact (or names
+    round-off as what it measures)."""
+    c = check
+    ideal = c.reference if math.isfinite(c.reference) else 0.0
+    return c.ours == ideal and not any(word in c.source for word in ("exact", "round-off"))
 
 
 def run_all(problems, log=print):

@@ -1,0 +1,76 @@
+"""Every verification check can fail: run with a deliberately wrong reference it does not hold, and its value is
+not its reference by construction. Runs every problem of both levels' verification tables (the rows of
+``figures/fe_verification.csv`` and ``figures/cavity_verification.csv``: ``all_checks`` is the registry run in
+order); the problems of more than about 5 s are slow tests (``make check``)."""
+import math
+
+import pytest
+
+from penetration import cavity_verification as CV
+from penetration.checks import Check, below, identical, near, shifted
+from penetration.fe import verification as V
+
+SLOW = {"Taylor bar", "driven HJC cavity", "Hertz"}
+CASES = [pytest.param(level, label, marks=[pytest.mark.slow] if label in SLOW else [])
+         for level, registry in (("fe", V.PROBLEMS), ("cavity", CV.PROBLEMS)) for label in registry]
+
+
+@pytest.mark.parametrize("level,label", CASES)
+def test_every_check_holds_and_fails_with_a_wrong_reference(level, label):
+    """The problem's checks hold; each fails with its reference moved by twice its accepted half-width (or its
+    bound moved past the value); none equals its reference (or 0, for a bound) unless the discrete algebra makes
+    it exact, which its source then says."""
+    checks = {"fe": V.PROBLEMS, "cavity": CV.PROBLEMS}[level][label]()
+    assert checks and all(math.isfinite(c.ours) for c in checks)
+    assert all(c.holds for c in checks), [c for c in checks if not c.holds]
+    assert not any(shifted(c).holds for c in checks), [c for c in checks if shifted(c).holds]
+    assert not any(identical(c) for c in checks), [c for c in checks if identical(c)]
+    assert all(c.low <= c.reference <= c.high for c in checks if math.isfinite(c.reference))
+
+
+@pytest.mark.parametrize("module", [V, CV])
+def test_all_checks_runs_every_registered_problem_in_order(module, monkeypatch):
+    calls = []
+
+    def fake(name):
+        def problem():
+            calls.append(name)
+            return [near(name, "q", 1.0, 1.0 + 1e-9, 1e-3, "1", "s")]
+        return problem
+    monkeypatch.setattr(module, "PROBLEMS", {"a": fake("a"), "b": fake("b")})
+    lines = []
+    rows = module.all_checks(log=lines.append)
+    assert calls == ["a", "b"] and [r.problem for r in rows] == ["a", "b"]
+    assert lines == ["a: 1 of 1 checks hold", "b: 1 of 1 checks hold"]
+
+
+def test_every_problem_function_of_the_fe_table_is_registered():
+    """A function of fe.verification that returns checks is in the table (registered by @problem)."""
+    registered = {getattr(f, "func", f).__name__ for f in V.PROBLEMS.values()}
+    documented = {name for name, f in vars(V).items() if callable(f) and getattr(f, "__module__", "") == V.__name__
+                  and not name.startswith("_") and name not in {"problem", "all_checks"}}
+    assert documented == registered, documented ^ registered
+
+
+def test_a_wrong_reference_fails_every_kind_of_row():
+    rows = [near("p", "two-sided", 1.01, 1.0, 0.02, "1", "s"),            # upper half: moved down
+            near("p", "two-sided", 0.99, 1.0, 0.02, "1", "s"),            # lower half: moved up
+            below("p", "bound", 0.3, 1.0, "1", "s"),
+            below("p", "bound at 0", 0.0, 1.0, "1", "0 (round-off)"),
+            Check("p", "lower bound", 5.0, math.nan, 2.0, math.inf, "1", "s"),
+            Check("p", "interval without reference", 0.5, math.nan, 0.0, 1.0, "1", "s")]
+    assert all(r.holds for r in rows)
+    assert not any(shifted(r).holds for r in rows)
+    moved = shifted(rows[0])
+    assert moved.high - moved.low == pytest.approx(rows[0].high - rows[0].low) and moved.reference == pytest.approx(0.96)
+    with pytest.raises(ValueError, match="open on both sides"):
+        shifted(Check("p", "anything", 1.0, math.nan, -math.inf, math.inf, "1", "s"))
+
+
+def test_a_change_that_is_exactly_zero_is_caught():
+    """The far-boundary check this replaced: the same mesh run twice, a change of exactly 0."""
+    assert identical(below("HJC cavity", "|change of the wall stress| / it", 0.0, 0.005, "1", "convergence"))
+    assert identical(near("p", "q", 2.0, 2.0, 0.01, "1", "closed form"))
+    assert not identical(near("p", "q", 2.0, 2.0, 0.01, "1", "exact in the discrete algebra"))
+    assert not identical(below("p", "q", 0.0, 1e-9, "1", "conservation (round-off)"))
+    assert not identical(below("p", "q", 1e-17, 1e-9, "1", "conservation"))
