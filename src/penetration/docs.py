@@ -196,6 +196,33 @@ def erosion(read) -> str:
             "`figures/fe/full/summary.json`).\n")
 
 
+def fe_speed(read) -> str:
+    """The last run of workflow/benchmarks/fe_speed.py on each machine: time per element-step against the floor."""
+    rows = _rows(read, "figures/timing/fe_speed.csv")
+    last = {}
+    for r in rows:
+        last.setdefault(r["machine"], {})
+        if r["date"] != next(iter(last[r["machine"]].values()), {}).get("date", r["date"]):
+            last[r["machine"]] = {}
+        last[r["machine"]][r["state"]] = r
+    out = []
+    for machine, states in last.items():
+        first = next(iter(states.values()))
+        out += [f"{machine} ({first['isa']}, {first['threads']} threads), {first['date'][:10]}, commit {first['commit']}: "
+                f"STREAM triad {float(first['stream_before_GBs']):.1f} GB/s before and "
+                f"{float(first['stream_after_GBs']):.1f} after, {first['bytes_per_element_step']} bytes per element-step, "
+                f"floor {float(first['floor_ns']):.1f} ns.", "",
+                "| state | ns per element-step | times the floor | 30 ns met | 2 x the floor met |", "|---|---|---|---|---|"]
+        for state, r in states.items():
+            ns, ratio = float(r["ns_per_element_step"]), float(r["times_floor"])
+            out.append(f"| {state} | {ns:.1f} | {ratio:.2f} | {'yes' if ns <= 30 else 'no'} | {'yes' if ratio <= 2 else 'no'} |")
+        do1 = [r for r in states.values() if r["do1_wall_s"]]
+        if do1:
+            out += ["", f"The DO1 shot itself took {float(do1[0]['do1_wall_s']):.1f} s in that run."]
+        out.append("")
+    return "\n".join(out) + "(`figures/timing/fe_speed.csv`, appended by `workflow/benchmarks/fe_speed.py`)\n"
+
+
 def _g(x) -> str:
     return "" if x in ("", "nan") else ("-inf" if x == "-inf" else "inf" if x == "inf" else f"{float(x):.4g}")
 
@@ -251,7 +278,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed}
 
 
 def render(text: str, read) -> str:

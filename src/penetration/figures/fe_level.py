@@ -204,9 +204,8 @@ def fe_do1_fields(inputs, outputs, params):
     ax.set(xlabel="r/d", ylabel="z/d (initial depth)", xlim=(0, 3), title="crater and tunnel")
     ax.invert_yaxis()
     ax.legend(fontsize=6)
-    for ax, key, title, bar in ((axes[1], "damage", "HJC damage D", "damage D (1)"),
-                                (axes[2], "eps_p", "equivalent plastic strain",
-                                 "equivalent plastic strain eps_p (1; top of scale: the failure strain)")):
+    for ax, key, title, bar in ((axes[1], "damage", "HJC damage D", "D (1)"),
+                                (axes[2], "eps_p", "equivalent plastic strain", "eps_p (1; top: the failure strain)")):
         sc = ax.scatter(live.r0 / d, live.z0 / d, c=live[key], s=1.5, cmap="viridis", vmin=0,
                         vmax=1.0 if key == "damage" else max(1e-9, s["failure_strain"] or 1.0), rasterized=True)
         er = f[f.state == 0]
@@ -215,6 +214,7 @@ def fe_do1_fields(inputs, outputs, params):
         ax.invert_yaxis()
         ax.legend(fontsize=6, loc="lower right")
         fig.colorbar(sc, ax=ax, shrink=0.6).set_label(bar, fontsize=8)
+    fig.subplots_adjust(wspace=0.45)
     fig.suptitle(f"DO1 at rest (FE level, depth {s['depth_m']:.2f} m): fields at the initial element positions "
                  f"(rows behind the moving window as they left it)", fontsize=9)
     save(fig, outputs.png, params.dpi)
