@@ -383,13 +383,17 @@ for path in (FIG / "nose_contrasts.png", study("fe/contrast_extrapolation.png"),
     early.append(str(path))
 
 # %% [markdown]
-# How much of the 5.1 m DO1 shot is the 5.4 m block's rear face: DO1 at the finite-element level in the
-# block and in the semi-infinite target, over realisations of the erosion chaos at the default mesh
-# (`figures/fe/rear_face.csv`, each realisation in `figures/fe/rear_face_members.csv`).
+# How much of the 5.1 m DO1 shot is the 5.4 m block's rear face: DO1 at the finite-element level on a chain of
+# targets from the semi-infinite one (radius 1.2 m, absorbing sides and bottom) to the block (radius 2.031 m, 5.4 m,
+# free faces) that changes one thing at a time (the bottom's depth, the bottom face, the lateral radius, the lateral
+# face), over realisations of the erosion chaos at the default mesh; each change's effect on the mean depth with its
+# Welch interval (`figures/fe/rear_face.csv`, `rear_face_effects.csv`, each realisation in
+# `figures/fe/rear_face_members.csv`).
 
 # %%
 md("*Study* (`make studies`):")
 table(pd.read_csv(study("fe/rear_face.csv")))
+table(pd.read_csv(study("fe/rear_face_effects.csv")))
 figure(study("fe/rear_face.png"))
 early.append(str(FIG / "fe/rear_face.png"))
 

@@ -223,6 +223,27 @@ def fe_speed(read) -> str:
     return "\n".join(out) + "(`figures/timing/fe_speed.csv`, appended by `workflow/benchmarks/fe_speed.py`)\n"
 
 
+def rear_face(read) -> str:
+    """The rear-face study: each target of the chain and each change's effect with its interval."""
+    t = _rows(read, "figures/fe/rear_face.csv")
+    e = _rows(read, "figures/fe/rear_face_effects.csv")
+    lines = ["| target | mean depth (m) | range (m) | at rest / through or moving at the end |", "|---|---|---|---|"]
+    for r in t:
+        bottom = "as deep as needed" if r["bottom_depth_m"] == "" else f"{float(r['bottom_depth_m']):g} m"
+        short = {"non_reflecting": "absorbing", "free": "free"}
+        lines.append(f"| R {float(r['radius_m']):.3g} m, {short[r['lateral']]} sides, bottom {bottom} {short[r['bottom']]} | "
+                     f"{float(r['mean_m']):.3f} | {float(r['min_m']):.3f}-{float(r['max_m']):.3f} | "
+                     f"{r['at_rest']} / {int(r['perforated']) + int(r['moving_at_end'])} |")
+    lines += ["", "| change | effect on the mean depth (m) | interval (m) |", "|---|---|---|"]
+    for r in e:
+        what = r["changes"] if r["single_change"] == "True" else "all four (semi-infinite to block)"
+        lines.append(f"| {what} | {float(r['effect_m']):+.3f} | {float(r['interval_low_m']):+.3f} to "
+                     f"{float(r['interval_high_m']):+.3f} |")
+    lines += ["", f"({t[0]['realisations']} realisations per target, {100 * float(e[0]['confidence']):.0f} % Welch "
+              "intervals; `figures/fe/rear_face.csv`, `rear_face_effects.csv`)"]
+    return "\n".join(lines) + "\n"
+
+
 def _g(x) -> str:
     return "" if x in ("", "nan") else ("-inf" if x == "-inf" else "inf" if x == "inf" else f"{float(x):.4g}")
 
@@ -278,7 +299,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face}
 
 
 def render(text: str, read) -> str:
