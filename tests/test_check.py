@@ -189,6 +189,21 @@ def test_an_ensemble_mean_may_move_by_its_standard_errors():
 RECORDS = "workflow/records"
 
 
+KEYS = ("velocity_ms", "nose", "contrast", "level", "target", "scene")
+
+
+def _restricted(spec, columns):
+    """A check spec on the given columns only (the records predate columns added since)."""
+    if isinstance(spec, str):
+        return spec
+    out = {k: v for k, v in spec.items() if k not in ("columns", "rows", "verdicts", "ensembles")}
+    out["columns"] = {c: v for c, v in spec.get("columns", {}).items() if c in columns}
+    out["rows"] = [r for r in spec.get("rows", []) if set(r["where"]) | set(r["columns"]) <= set(columns)]
+    out["verdicts"] = {c: v for c, v in spec.get("verdicts", {}).items() if c in columns}
+    out["ensembles"] = {c: v for c, v in spec.get("ensembles", {}).items() if c in columns and v["std"] in columns}
+    return out
+
+
 @pytest.mark.parametrize("new_build, old_build", [("build_xeon_avx512", None), ("build_epyc_avx2", None),
                                                   ("build_xeon_avx512", "build_epyc_avx2")])
 def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
@@ -211,11 +226,20 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     from conftest import committed
     import io
     moved = 0
+    restructured = set()
     for path in files:
         new = pd.read_csv(record / path)
         old = pd.read_csv(io.StringIO(committed(path))) if old_build is None else pd.read_csv(against / path)
-        assert compare(new, old, specs[path], check) is None, path
+        if (len(new) != len(old) or not set(new.columns) & set(old.columns) >= {c for c in new.columns if c in KEYS}
+                or path == "figures/fe/rear_face.csv" and "scene" not in new.columns):
+            restructured.add(path)
+            continue
+        common = [c for c in new.columns if c in old.columns]  # columns added since the records are not in them
+        new, old = new[common], old[common]
+        assert compare(new, old, _restricted(specs[path], common), check) is None, path
         moved += not new.equals(old)
+    # the rear-face study became a chain of five targets after the records (two targets there, another spec)
+    assert restructured == {"figures/fe/rear_face.csv"}
     # each is a different build, not a copy: most FE files moved (fig13, the meshes, and the analytic,
     # trajectory and cavity rows are the same)
     assert moved >= 21
