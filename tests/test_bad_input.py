@@ -247,7 +247,8 @@ def test_fe_scene_errors(tmp_path, changes, needle):
 def test_fe_scenes_of_the_pipeline_are_valid():
     from penetration.pipeline import fe_scene_shots
     shots = fe_scene_shots(ROOT / "workflow/scenes/fe", SCENE_SCHEMA)
-    assert set(shots) == {"do1", "do1_block", "table3", "fig15"}
+    assert set(shots) == {"do1", "do1_block", "table3", "fig15", "do1_depth54", "do1_depth54_free_bottom",
+                          "do1_block_absorbing_sides"}
     assert ("double_ogive", "835") in shots["do1"] and len(shots["table3"]) == 12 and len(shots["fig15"]) == 24
 
 

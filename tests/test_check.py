@@ -238,8 +238,10 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
         new, old = new[common], old[common]
         assert compare(new, old, _restricted(specs[path], common), check) is None, path
         moved += not new.equals(old)
-    # the rear-face study became a chain of five targets after the records (two targets there, another spec)
-    assert restructured == {"figures/fe/rear_face.csv"}
+    # after the records, the rear-face study became a chain of five targets (two there, another spec) and the FE
+    # verification table gained problems (more rows)
+    assert "figures/fe/rear_face.csv" in restructured
+    assert restructured <= {"figures/fe/rear_face.csv", "figures/fe_verification.csv"}
     # each is a different build, not a copy: most FE files moved (fig13, the meshes, and the analytic,
     # trajectory and cavity rows are the same)
     assert moved >= 21
