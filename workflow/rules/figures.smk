@@ -243,9 +243,8 @@ rule accuracy_cavity:
 
 rule nose_contrasts:
     input: **task("figures.nose_contrasts"), csv="results/contrasts/nose_contrasts.csv", reference=config["reference"],
-           fe=f"figures/fe/{config['fe_profile']}/table3_ratios.csv",
     output: png=report("figures/nose_contrasts.png", caption="../report/captions/nose_contrasts.rst", category="Conclusions"), csv="figures/nose_contrasts.csv", table="figures/nose_contrasts_table.csv",
-    params: dpi=config["figures"]["dpi"], fe_profile=config["fe_profile"],
+    params: dpi=config["figures"]["dpi"],
             band=study_input("figures/fe/contrast_band.csv"), limit=study_input("figures/fe/contrast_extrapolation.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5

@@ -38,12 +38,10 @@ def wide_table(data):
 FE_COLOR = "tab:red"
 
 
-def _fe(ax, name, fe, band, limit, profile):
-    """The FE level on a ratio panel: the default mesh, the bands' means (studies: a scatter measure) and the
-    line through the band meshes at zero element size with its interval (a study)."""
-    g = fe[fe.contrast == name]
-    ax.plot(g.velocity_ms - 30, g.fe_ratio, "D", ms=4, color=FE_COLOR, mfc="none",
-            label=f"fe: one mesh ({profile}), fs calibrated on DO1")
+def _fe(ax, name, band, limit):
+    """The FE level on a ratio panel (studies, the same whichever mesh profile a build uses; one mesh's contrasts are
+    figures/fe/{profile}/contrasts.png): the bands' means, a scatter measure, and the line through the band meshes
+    at zero element size with its interval."""
     b = band[band.contrast == name]
     ax.plot(b.velocity_ms - 15, b.mean_ratio, ".", ms=5, color=FE_COLOR, alpha=0.6,
             label="fe: mean over a band of meshes (8, 10, 12 across; a study)")
@@ -63,7 +61,6 @@ def nose_contrasts(inputs, outputs, params):
     fig, axes = figure(4, 4.0, 4.0)
     fig.subplots_adjust(wspace=0.3)
     t3 = data[data.source == "table3"]
-    fe = pd.read_csv(inputs.fe)
     band, limit = committed_study(params.band), committed_study(params.limit)
     for ax, name in zip(axes, PANELS):
         d = data[data.contrast == name]
@@ -82,7 +79,7 @@ def nose_contrasts(inputs, outputs, params):
                        label="paper's text: the gain 'at the same velocity' (+5 % over CRH 4.5, +10 % over CRH 3)")
             ax.annotate(f"text: +{claim.value:g} %", (1400, 1 + claim.value / 100), fontsize=7, ha="right",
                         va="bottom")
-        _fe(ax, name, fe, band, limit, params.fe_profile)
+        _fe(ax, name, band, limit)
         ax.axhline(1.0, color="k", lw=0.6)
         ax.set(xlabel="striking velocity (m/s)", ylabel="depth ratio", title=f"{name} depth ratio")
     gains = data[(data.source == "fig15") & (data.contrast.isin(GAINS_1200))]
