@@ -215,20 +215,24 @@ CAVITY_SECONDS_AT_100_ZONES = 0.11
 CAVITY_TABLE_BUDGET_S = 600.0
 
 
-def machine_name() -> str:
-    """The CPU model (/proc/cpuinfo where there is one), the number of CPUs and the Python version, for timing
-    records."""
+def cpu_model() -> str:
+    """The CPU model from /proc/cpuinfo where there is one, else what platform knows of the processor."""
     import platform
 
-    cpu = platform.processor() or platform.machine()
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
             if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
+                return line.split(":", 1)[1].strip()
     except OSError:
         pass
-    return f"{cpu}, {os.cpu_count()} CPUs, Python {platform.python_version()}"
+    return platform.processor() or platform.machine()
+
+
+def machine_name() -> str:
+    """The CPU model, the number of CPUs and the Python version, for timing records."""
+    import platform
+
+    return f"{cpu_model()}, {os.cpu_count()} CPUs, Python {platform.python_version()}"
 
 
 def machine_memory() -> int:

@@ -91,15 +91,21 @@ def write_json(obj, path):
     write_text(path, json.dumps(obj, indent=2, default=_jsonable) + "\n")
 
 
+def file_digest(path) -> str:
+    """sha256 of a file's content, "missing" when there is no such file."""
+    import hashlib
+
+    p = Path(path)
+    return hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else "missing"
+
+
 def committed_study(spec) -> pd.DataFrame:
     """The CSV of a committed study output passed by penetration.pipeline.study_input ({path, sha256}), checked to be
     the content the rule was scheduled with."""
-    import hashlib
-
     path = Path(spec["path"])
     if not path.is_file():
         raise FileNotFoundError(f"{path}: a study's output this rule reads is missing; build it with `make studies`")
-    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    digest = file_digest(path)
     if digest != spec["sha256"]:
         raise RuntimeError(f"{path} changed after the workflow was scheduled (sha256 {digest[:12]}, scheduled "
                            f"{spec['sha256'][:12]}); run again")

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import ast
 import functools
-import hashlib
 import importlib
 import json
 from pathlib import Path
@@ -108,9 +107,9 @@ def study_input(path: str) -> dict:
     never reruns a study): its path and the digest of its content, passed as a param so that a changed study reruns
     the rule (Snakemake's params trigger). The digest is "missing" when the file is not there (the task then says
     how to build it)."""
-    p = Path(path)
-    digest = hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else "missing"
-    return {"path": path, "sha256": digest}
+    from .io import file_digest
+
+    return {"path": path, "sha256": file_digest(path)}
 
 
 def run(rule, task_file, inputs, outputs, params):

@@ -9,7 +9,6 @@ cores) and the load average are printed beside it: a busy host slows the run and
 from __future__ import annotations
 
 import os
-import platform
 import sys
 import time
 from pathlib import Path
@@ -18,6 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "src"))
 
 from penetration import levels as L  # noqa: E402
+from penetration.config import cpu_model  # noqa: E402
 from penetration.fe.shot import TargetSpec, run_shot  # noqa: E402
 from penetration.fe_level import estimate_cost, expected_depth  # noqa: E402
 from penetration.geometry import Ogive  # noqa: E402
@@ -31,13 +31,7 @@ SHOTS = {
 
 
 def machine():
-    cpu = platform.processor() or platform.machine()
-    try:
-        cpu = next(line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
-                   if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    return f"{cpu}, {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}"
+    return f"{cpu_model()}, {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}"
 
 
 def main() -> int:

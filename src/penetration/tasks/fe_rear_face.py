@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from ..fe.shot import TargetSpec
 from ..figures.fe_rear_face import rear_face_figure
 from ..io import load_json, task, write_csv
 
@@ -22,12 +23,10 @@ FACES = (("depth", "the bottom's depth"), ("bottom", "the bottom face"), ("radiu
 
 
 def _target(s):
-    """A shot's target with its faces resolved (records written before the faces could be set carry only kind)."""
-    t = dict(s["target"])
-    block = t["kind"] == "block"
-    t["lateral"] = t.get("lateral") or ("free" if block else "non_reflecting")
-    t["bottom"] = t.get("bottom") or ("free" if block else "non_reflecting")
-    return t
+    """A shot's target with its faces resolved by TargetSpec (records written before the faces could be set carry
+    only kind, radius and depth)."""
+    spec = TargetSpec(**s["target"])
+    return {**s["target"], "lateral": spec.boundary("lateral"), "bottom": spec.boundary("bottom")}
 
 
 def members_frame(paths):
