@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
-ORDER = ["units", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
+ORDER = ["errors", "units", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
          "calibration", "shots", "levels", "reference", "diff", "config", "scenes", "io", "figures", "tasks", "pipeline", "cli"]
 PHYSICS = ["mesh_convergence", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
            "calibration", "shots", "levels"]

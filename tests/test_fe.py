@@ -70,7 +70,7 @@ def test_time_step_collapse_is_refused_or_eroded():
 
 
 def test_controls_refuse_bad_values():
-    from penetration.geometry import ParameterError
+    from penetration.errors import ParameterError
     with pytest.raises(ParameterError, match="hourglass"):
         Controls(hourglass=0.3)
     with pytest.raises(ParameterError, match="erosion"):

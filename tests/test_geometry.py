@@ -4,7 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from penetration.geometry import (Cone, DoubleOgive, Flat, MinimumNstar, Ogive, ParameterError, TabulatedNose,
+from penetration.errors import ParameterError
+from penetration.geometry import (Cone, DoubleOgive, Flat, MinimumNstar, Ogive, TabulatedNose,
                                   make_nose)
 from penetration.nstar import nstar
 

@@ -4,7 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from penetration.geometry import Cone, DoubleOgive, MinimumNstar, Ogive, ParameterError
+from penetration.errors import ParameterError
+from penetration.geometry import Cone, DoubleOgive, MinimumNstar, Ogive
 from penetration.nstar import cumulative_nstar, nstar
 
 

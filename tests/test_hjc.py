@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from penetration.geometry import ParameterError
+from penetration.errors import ParameterError
 from penetration.hjc import HJC, PointState, drive, fracture_strain, loading_pressure, strength
 
 MAT = HJC()

@@ -13,7 +13,8 @@ import pytest
 
 from penetration import levels as L
 from penetration.cavity import Controls as CavityControls, Mesh as CavityMesh
-from penetration.geometry import Ogive, ParameterError
+from penetration.errors import ParameterError
+from penetration.geometry import Ogive
 from penetration.hjc import HJC
 from penetration.tasks.levels import context_from_files, context_from_pipeline
 

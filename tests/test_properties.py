@@ -5,7 +5,8 @@ import numpy as np
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from penetration.geometry import DoubleOgive, MinimumNstar, Ogive, ParameterError
+from penetration.errors import ParameterError
+from penetration.geometry import DoubleOgive, MinimumNstar, Ogive
 from penetration.nstar import cumulative_nstar, nstar
 
 psi = st.floats(0.5, 200.0)

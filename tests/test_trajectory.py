@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from penetration.dop import penetration_depth
-from penetration.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive, ParameterError
+from penetration.errors import ParameterError
+from penetration.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive
 from penetration.nstar import nstar
 from penetration.resistance import Target, double_ogive_force_eq11, forrestal_stress, nose_force, nose_surface, \
     tunnel_force

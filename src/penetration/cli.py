@@ -17,7 +17,8 @@ import time
 from pathlib import Path
 
 from .config import ConfigError
-from .geometry import NOSES, ParameterError, make_nose
+from .errors import ParameterError
+from .geometry import NOSES, make_nose
 from .nstar import nstar
 from .units import NUMBER_FORM, parse_number
 

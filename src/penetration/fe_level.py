@@ -141,7 +141,7 @@ def estimate_cost(nose, mass, velocity, material, settings: Settings, target: Ta
     from .fe.mesh import node_lines
     from .fe.shot import body_outline, mesh_spec, model_for
     from .fe.solver import Projectile, run
-    from .geometry import ParameterError
+    from .errors import ParameterError
     h = settings.element_size
     r, z = node_lines(mesh_spec(nose, settings, target, expected_depth))
     nr, nz = len(r) - 1, len(z) - 1

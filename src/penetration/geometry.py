@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import ParameterError
 from .units import NUMBER_FORM, parse_number
 
 NOSES: dict[str, type] = {}
@@ -35,15 +36,6 @@ def register(name):
         NOSES[name] = cls
         return cls
     return wrap
-
-
-class ParameterError(ValueError):
-    """A nose or config parameter outside its allowed range."""
-
-    def __init__(self, owner, name, value, allowed):
-        self.owner, self.name, self.value, self.allowed = owner, name, value, allowed
-        where = f"{owner}: {name}" if " " in str(owner) else f"{owner}.{name}"
-        super().__init__(f"{where} = {value!r} is not allowed: {allowed}")
 
 
 SIZE = (1e-6, 1e3)  # m: the range of radii a nose may have

@@ -60,7 +60,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .geometry import ParameterError
+from .errors import ParameterError
 
 # indices into the parameter array used by the compiled kernels
 (I_RHO0, I_G, I_A, I_B, I_C, I_N, I_FC, I_T, I_EPS0, I_EFMIN, I_SMAX, I_PC, I_MUC, I_PL, I_MUL, I_D1, I_D2,

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, least_squares
 
-from .geometry import DoubleOgive, Ogive, ParameterError
+from .errors import ParameterError
+from .geometry import DoubleOgive, Ogive
 from .nstar import nstar, shape_rate
 
 # Decimals an inferred nose parameter is rounded to: well above round-off, so that the BLAS kernels and vector

@@ -45,7 +45,8 @@ import numpy as np
 from .cavity import Controls as CavityControls, Mesh as CavityMesh
 from .cavity_level import SigmaTable, cavity_trajectory, sigma_table
 from .dop import penetration_depth
-from .geometry import NOSES, Flat, Ogive, ParameterError, make_nose
+from .errors import ParameterError
+from .geometry import NOSES, Flat, Ogive, make_nose
 from .hjc import HJC
 from .nstar import nstar
 from .resistance import STRENGTH_LAWS, Target, crater_coefficient, crater_velocity_squared, strength_factor

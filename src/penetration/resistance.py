@@ -13,7 +13,8 @@ from typing import Callable
 
 import numpy as np
 
-from .geometry import ParameterError, gauss_panels
+from .errors import ParameterError
+from .geometry import gauss_panels
 from .units import MPA
 
 STRENGTH_LAWS: dict[str, Callable[[float], float]] = {}

@@ -25,7 +25,7 @@ from functools import cached_property
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .geometry import ParameterError
+from .errors import ParameterError
 from .nstar import cumulative_nstar
 from .resistance import NoseSurface, Target, crater_coefficient, forrestal_stress, nose_force, nose_surface
 

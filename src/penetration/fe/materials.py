@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry import ParameterError
+from ..errors import ParameterError
 from ..hjc import HJC
 
 ELASTIC, VON_MISES, HJC_KIND = 0, 1, 2

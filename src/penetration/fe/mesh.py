@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry import ParameterError
+from ..errors import ParameterError
 from .kernels import VECTOR_WIDTH
 
 

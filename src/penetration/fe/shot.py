@@ -28,7 +28,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.signal import butter, filtfilt
 
-from ..geometry import ParameterError
+from ..errors import ParameterError
 from . import kernels as K
 from .mesh import MeshSpec, body_outline, build
 from .solver import Controls, Model, Projectile, run

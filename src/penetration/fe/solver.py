@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from ..geometry import ParameterError
+from ..errors import ParameterError
 from . import kernels as K
 from .materials import kind_of
 from .mesh import Grid
