@@ -15,6 +15,11 @@
 # lists as code inputs every package module that module imports, so editing
 # a module re-runs exactly the rules whose tasks use it. Every rule declares
 # threads, resources (mem_mb, runtime in minutes) and a benchmark record.
+# Rules of one shape are declared once: the first of a kind in its file is
+# written out, the others are `use rule FIRST as NAME with:` (they inherit its
+# threads, resources and script, and state their own inputs, outputs, params,
+# benchmark and log); the paper's figures and tables are one table and a loop
+# (workflow/rules/figures.smk).
 from pathlib import Path
 
 from penetration.config import check_config, check_config_files
@@ -32,9 +37,6 @@ for folder in ("workflow/scenes", "workflow/scenes/cavity", "workflow/scenes/fe"
 STUDIES = load_studies("workflow/studies", "workflow/schemas/study.schema.json")
 SCENE_SCHEMA = "workflow/schemas/scene.schema.json"
 GEOMETRY_RESULTS = dict(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json")
-FIGURES = ["fig01", "fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig12", "fig14", "fig15",
-           "fig16", "validation", "cavity_sigma_n", "nose_contrasts"]
-TABLES = ["table1", "table2", "table3", "table4"]
 
 
 # mesh profiles of the convergence study of the FE nose contrasts (Table 3 only), finer than `full`

@@ -1,53 +1,138 @@
-"""Stages import one way; physics modules do no I/O or plotting."""
+"""Stages import one way; physics modules do no I/O, plotting or printing; figures only draw.
+
+Every module of the package (found on the file system, a subpackage counting as one) has its place in ORDER, so a new
+module cannot slip past these tests.
+"""
 import ast
 from pathlib import Path
 
 import pytest
 
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
-ORDER = ["errors", "units", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
-         "calibration", "shots", "levels", "reference", "diff", "config", "scenes", "io", "figures", "tasks", "pipeline", "cli"]
-PHYSICS = ["mesh_convergence", "geometry", "nstar", "inference", "resistance", "dop", "trajectory", "hjc", "cavity", "cavity_level",
-           "calibration", "shots", "levels"]
+# the direction of imports: a module imports only modules before it
+ORDER = ["errors", "units", "checks", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference", "resistance",
+         "dop", "calibration", "trajectory", "hjc", "concrete", "cavity", "cavity_level", "cavity_oracles",
+         "cavity_verification", "fe", "fe_level", "shots", "levels", "trust", "warmup", "reference", "diff",
+         "fe_studies", "config", "scenes", "numba_cache", "io", "docs", "figures", "tasks", "pipeline", "build", "cli",
+         "__main__"]
+# pure: no file I/O, plotting or printing
+PHYSICS = ["errors", "units", "checks", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference",
+           "resistance", "dop", "calibration", "trajectory", "hjc", "concrete", "cavity", "cavity_level",
+           "cavity_oracles", "cavity_verification", "fe", "fe_level", "shots", "levels", "trust"]
+# the simulation levels, which the closed form (dop) checks and which never import it
+SIMULATION = ["trajectory", "cavity", "cavity_level", "fe", "fe_level"]
+# pure functions on result tables (frames in, frames out): no file I/O, plotting or printing
+TABLES = ["fe_studies"]
+
+# known violations: the tests run and must fail until the code is fixed (strict), then the mark goes
+DOP_IN_FE_LEVEL = pytest.mark.xfail(strict=True, reason="fe_level.expected_depth sizes the FE domain with Eq 9 "
+                                    "(dop.penetration_depth); its callers (tasks/fe.py, levels.py) are to pass the "
+                                    "estimate in")
+KNOWN = {
+    "pure": {"fe_level": pytest.mark.xfail(strict=True, reason="fe_level.estimate_cost reads the free memory "
+                                           "(os.sysconf) inside the FE level's module")},
+    "quiet": {"fe": pytest.mark.xfail(strict=True, reason="fe/verification.all_checks logs to print by default; the "
+                                      "FE package reports through logging (issue 35 item 1)"),
+              "fe_level": pytest.mark.xfail(strict=True, reason="fe_level.calibrate_failure_strain logs to print by "
+                                            "default"),
+              "checks": pytest.mark.xfail(strict=True, reason="checks.run_all logs to print by default"),
+              "cavity_verification": pytest.mark.xfail(strict=True, reason="cavity_verification.all_checks logs to "
+                                                       "print by default")},
+}
+
+
+def _marked(kind, modules):
+    return [pytest.param(m, marks=KNOWN[kind][m]) if m in KNOWN[kind] else m for m in modules]
+
+
+def package_modules():
+    """The package's modules and subpackages by name (a subpackage is one entry), from the file system."""
+    return {p.stem for p in PKG.glob("*.py") if p.stem != "__init__"} | {
+        p.name for p in PKG.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
+
+
+def _files(module):
+    path = PKG / f"{module}.py"
+    return [path] if path.exists() else sorted((PKG / module).rglob("*.py"))
 
 
 def imports(module):
-    path = PKG / f"{module}.py"
-    files = [path] if path.exists() else sorted((PKG / module).glob("*.py"))
+    """Names a module (or every file of a subpackage) imports: the package's top-level modules it uses and the
+    top-level names of other packages; a subpackage's imports of its own modules are left out."""
     names = set()
-    for node in (n for f in files for n in ast.walk(ast.parse(f.read_text()))):
-        if isinstance(node, ast.ImportFrom) and node.level >= 1 and node.module:
-            names.add(node.module.split(".")[0])
-        elif isinstance(node, ast.ImportFrom) and node.level >= 1:
-            names.update(a.name for a in node.names)
-        elif isinstance(node, ast.Import):
-            names.update(a.name.split(".")[0] for a in node.names)
-        elif isinstance(node, ast.ImportFrom) and node.module:
-            names.add(node.module.split(".")[0])
+    for f in _files(module):
+        depth = len(f.relative_to(PKG).parts) - 1  # 0: a module of the package, 1: a module of a subpackage
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level:
+                if node.level != depth + 1:
+                    continue  # within the subpackage
+                names.update([node.module.split(".")[0]] if node.module else [a.name for a in node.names])
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                parts = node.module.split(".")
+                names.add(parts[1] if parts[0] == "penetration" and len(parts) > 1 else parts[0])
+            elif isinstance(node, ast.Import):
+                for a in node.names:
+                    parts = a.name.split(".")
+                    names.add(parts[1] if parts[0] == "penetration" and len(parts) > 1 else parts[0])
     return names
+
+
+def test_every_module_has_its_place():
+    """A module in neither list fails here: ORDER holds every module once, PHYSICS and the others are among them."""
+    assert len(ORDER) == len(set(ORDER))
+    assert set(ORDER) == package_modules()
+    assert set(PHYSICS) | set(SIMULATION) | set(TABLES) <= set(ORDER)
 
 
 @pytest.mark.parametrize("module", ORDER[:-1])
 def test_no_upstream_imports(module):
     later = set(ORDER[ORDER.index(module) + 1:])
-    assert not (imports(module) & later), f"{module} imports a later stage"
+    assert not (imports(module) & later), f"{module} imports a later stage: {sorted(imports(module) & later)}"
 
 
-@pytest.mark.parametrize("module", PHYSICS)
+@pytest.mark.parametrize("module", _marked("pure", PHYSICS))
 def test_physics_is_pure(module):
     assert not (imports(module) & {"matplotlib", "pandas", "os", "json", "yaml"})
 
 
-def test_dop_and_simulation_levels_are_independent():
-    """The closed form and the trajectory engine check each other, so neither imports the other."""
-    assert "trajectory" not in imports("dop")
-    assert "dop" not in imports("trajectory")
+def _prints(module):
+    """Where a module prints or writes to the standard streams: print named (called or passed as a logger),
+    sys.stdout or sys.stderr used."""
+    found = []
+    for f in _files(module):
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.Name) and node.id == "print":
+                found.append(f"{f.name}:{node.lineno} print")
+            elif isinstance(node, ast.Attribute) and node.attr in ("stdout", "stderr") and \
+                    isinstance(node.value, ast.Name) and node.value.id == "sys":
+                found.append(f"{f.name}:{node.lineno} sys.{node.attr}")
+    return found
+
+
+@pytest.mark.parametrize("module", _marked("quiet", PHYSICS))
+def test_physics_does_not_print(module):
+    """Physics reports through its return values (or logging); the task layer prints."""
+    assert _prints(module) == []
+
+
+@pytest.mark.parametrize("module", TABLES)
+def test_result_tables_are_pure(module):
+    assert not (imports(module) & {"matplotlib", "os", "json", "yaml", "io", "figures", "tasks", "pipeline"})
+    calls = {n.func.attr if isinstance(n.func, ast.Attribute) else getattr(n.func, "id", None)
+             for f in _files(module) for n in ast.walk(ast.parse(f.read_text())) if isinstance(n, ast.Call)}
+    assert not calls & {"open", "read_csv", "to_csv", "read_json", "savefig"}
+    assert _prints(module) == []
+
+
+@pytest.mark.parametrize("level", [pytest.param(m, marks=DOP_IN_FE_LEVEL) if m == "fe_level" else m for m in SIMULATION])
+def test_dop_and_simulation_levels_are_independent(level):
+    """The closed form and the simulation levels check each other, so neither imports the other."""
+    assert "dop" not in imports(level)
+    assert level not in imports("dop")
 
 
 def test_figures_read_results_only():
-    """Figure modules import the I/O module and the reference table, never a task or physics module."""
-    assert not imports("figures") & {"tasks", "pipeline", *PHYSICS}
-
-
-def test_cavity_level_does_not_use_the_closed_form():
-    assert "dop" not in imports("cavity") and "dop" not in imports("cavity_level")
+    """Figure modules import the I/O module, the reference table and the unit constants, never a task, study or
+    physics module, nor statistics."""
+    assert imports("figures") & package_modules() <= {"io", "reference", "units"}
+    assert "scipy" not in imports("figures")

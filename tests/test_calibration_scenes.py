@@ -64,8 +64,8 @@ def test_resolve_and_velocity_range():
 
 
 def test_cavity_scene_effects_switch_hjc_terms():
-    from penetration.cavity_level import material_switches
-    cfg = {"lock": "offset", "tension": "openradioss"}
+    from penetration.concrete import material_switches
+    cfg = {"lock": "offset", "tension": "openradioss", "rate_floor": True}
     assert material_switches(("crater", "cavity", "strain_rate", "damage", "strength_cap"), {}, cfg) == {}
     assert material_switches(("nose_entry", "cavity"), {"lock": "literal"}, cfg) == {
         "rate": False, "damage": False, "smax": 1e6, "lock": "literal"}

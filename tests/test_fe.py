@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from penetration.fe import Controls, Grid, MeshSpec, Model, Projectile, Unstable, body_outline, build, run
-from penetration.fe import kernels as K
+from penetration.fe import state as fields
+from penetration.fe.nodes import node_pass
 from penetration.fe import setups
 from penetration.geometry import Flat, Ogive
 from penetration.hjc import HJC
@@ -20,7 +21,7 @@ def _penetration(nose, v, h=0.02, fs=1.0, end=1.5e-3, **kw):
     a = 0.07
     zeta, rho = body_outline(nose, 1.13)
     g = build(MeshSpec(h, 3 * a, 2.0, 1.0, 2.5, 1.15))
-    c = dict(erosion="plastic_strain", erosion_value=fs, end_time=end, output_interval=1e-4, progress=False,
+    c = dict(erosion="plastic_strain", erosion_value=fs, end_time=end, output_interval=1e-4,
              lateral="non_reflecting", bottom="non_reflecting")
     c.update(kw)
     m = Model(g, HJC(), Controls(**c))
@@ -106,20 +107,20 @@ def test_hourglass_control_stays_active_in_fully_damaged_material():
     mode and its work is positive; a linear field in the same elements gets no hourglass force."""
     g = Grid.tensor(np.linspace(0.5, 0.6, 3), np.linspace(0.0, 0.1, 3))
     m = Model(g, HJC(), Controls(hourglass=0.1))
-    m.E[K.DMG] = 1.0
+    m.E[fields.DMG] = 1.0
     h = np.array([1.0, -1.0, 1.0, -1.0])
     m.vz[:] = 0.0
     for e, nodes in enumerate(g.connectivity()):
         m.vz[nodes] += 0.25 * h  # superposed hourglass patterns (a checkerboard on the nodes)
     _pass(m, 1e-7)
     fr, fz = _residual(m)
-    assert m.rowhg.sum() > 0
+    assert m.rows.hg.sum() > 0
     assert np.dot(fz, m.vz) > 0  # internal force in the direction of the mode: the node update opposes it
     m2 = Model(g, HJC(), Controls(hourglass=0.1))
-    m2.E[K.DMG] = 1.0
+    m2.E[fields.DMG] = 1.0
     m2.vz[:] = 0.1 * m2.z
     _pass(m2, 1e-7)
-    assert m2.rowhg.sum() < 1e-12 * m.rowhg.sum()
+    assert m2.rows.hg.sum() < 1e-12 * m.rows.hg.sum()
 
 
 def test_failure_strain_calibration_finds_the_root_of_a_noisy_decreasing_depth(monkeypatch):
@@ -150,7 +151,7 @@ def test_node_pass_without_dashpot_arithmetic_gives_the_same_velocities():
     """Rows flagged dashpot-free take a leaner loop: bit for bit the velocities of the full dashpot arithmetic."""
     m = Model(build(MeshSpec(0.05, 0.2, 1.0, 0.6, 1.2, 1.2)), HJC(), Controls(lateral="non_reflecting", bottom="non_reflecting"))
     g = m.grid
-    m._dashpots(7 * (g.nr + 1) + np.arange(g.nr + 1))   # a window's bottom row inside the grid
+    m.add_dashpots(7 * (g.nr + 1) + np.arange(g.nr + 1))   # a window's bottom row inside the grid
     assert list(np.nonzero(m.rowdash)[0]) == [7, g.nz]  # the bottom face is a grid edge: its flag is never read
     rng = np.random.default_rng(5)
     F = rng.standard_normal(m.F.shape)
@@ -158,12 +159,12 @@ def test_node_pass_without_dashpot_arithmetic_gives_the_same_velocities():
     m.nstate[:] = 2 * rng.integers(0, 2, m.nstate.size)
     out = []
     for flags in (m.rowdash, np.ones_like(m.rowdash)):
-        vr, vz = np.sin(np.arange(m.vr.size)), np.cos(np.arange(m.vz.size))
-        vr[m.on_axis] = 0.0
-        vr0, vz0, rowbnd = np.zeros_like(vr), np.zeros_like(vz), np.zeros_like(m.rowbnd)
-        K.node_pass(m.nr, m.nz, 0, m.nz, F, m.alive, m.mass, vr, vz, vr0, vz0, m.nstate, 1e-6, m.fix, m.dash, flags,
-                    m.zp, m.zs, rowbnd)
-        out.append((vr, vz, rowbnd))
+        V = np.zeros_like(m.V)
+        V[fields.VR], V[fields.VZ] = np.sin(np.arange(m.vr.size)), np.cos(np.arange(m.vz.size))
+        V[fields.VR, m.on_axis] = 0.0
+        rf = np.zeros_like(m.rows.f)
+        node_pass(m.span(), F, m.alive, m.mass, m.nstate, m.fix, m.dash, flags, (m.zp, m.zs), 1e-6, V, rf)
+        out.append((V[fields.VR], V[fields.VZ], rf[[fields.RF_POWER, fields.RF_IMPULSE]]))
     for a, b in zip(out[0], out[1]):
         assert np.array_equal(a, b)
     assert np.all(out[0][2][0, [7, g.nz]] != 0.0)  # the dashpots absorbed power where they are
@@ -182,36 +183,36 @@ def test_elastic_elements_of_the_vectorised_update_are_still_checked(case):
     m = Model(build(MeshSpec(0.05, 0.2, 1.0, 0.6, 1.2, 1.2)), HJC(), controls)
     m.vz[:] = -1e-3 * m.z   # a uniaxial compression far inside the elastic range
     if case in ("floor", "guarded_floor"):
-        m.ctl[K.C_DTMIN] = 2.0 * m.dt0
+        m.ctl[fields.C_DTMIN] = 2.0 * m.dt0
     if case == "non_finite":
-        m.E[K.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
+        m.E[fields.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
     marked = m.nr + 5
     if case == "plastic_strain":
-        m.E[K.EPSP, marked] = 0.5      # plastic strain from earlier steps, no flow now
+        m.E[fields.EPSP, marked] = 0.5      # plastic strain from earlier steps, no flow now
     if case == "damage":
-        m.E[K.DMG, marked] = 0.95      # damaged earlier, elastic now
+        m.E[fields.DMG, marked] = 0.95      # damaged earlier, elastic now
     E0 = m.E.copy()
     _pass(m, 1e-7)
-    assert np.all(m.E[K.EPSP] == E0[K.EPSP]) and np.all(m.E[K.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
-    assert np.all(m.E[K.DMG] == E0[K.DMG])
+    assert np.all(m.E[fields.EPSP] == E0[fields.EPSP]) and np.all(m.E[fields.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
+    assert np.all(m.E[fields.DMG] == E0[fields.DMG])
     if case in ("plastic_strain", "damage"):
-        assert np.flatnonzero(m.alive == 2).tolist() == [marked]
-        assert m.rowero.sum() == m.E[K.IE, marked] > 0 and np.all(m.rowfail[:m.nz] == -1)
+        assert np.flatnonzero(m.alive == fields.ERODING).tolist() == [marked]
+        assert m.rows.ero.sum() == m.E[fields.IE, marked] > 0 and np.all(m.rows.fail == -1)
     elif case == "guarded_floor":
-        assert np.all(m.alive == 2) and np.all(m.rowfail[:m.nz] == -1)
+        assert np.all(m.alive == fields.ERODING) and np.all(m.rows.fail == -1)
     elif case == "erosion":
-        assert np.all(m.alive == 2)
-        assert math.isclose(m.rowero.sum(), m.E[K.IE].sum(), rel_tol=1e-12) and m.rowero.sum() > 0
-        assert np.all(m.E[K.IE] > E0[K.IE])
+        assert np.all(m.alive == fields.ERODING)
+        assert math.isclose(m.rows.ero.sum(), m.E[fields.IE].sum(), rel_tol=1e-12) and m.rows.ero.sum() > 0
+        assert np.all(m.E[fields.IE] > E0[fields.IE])
     elif case == "floor":
-        assert m.rowfail[0] == 0 and m.rowfail[m.nz] == K.DT_COLLAPSE
+        assert m.rows.fail[0] == 0 and m.rows.code[0] == fields.DT_COLLAPSE
     else:
-        assert [j for j in range(m.nz) if m.rowfail[j] >= 0] == [1]
-        assert m.rowfail[1] == m.nr + 5 and m.rowfail[m.nz + 1] == K.NON_FINITE
+        assert [j for j in range(m.nz) if m.rows.fail[j] >= 0] == [1]
+        assert m.rows.fail[1] == m.nr + 5 and m.rows.code[1] == fields.NON_FINITE
 
 
 def test_an_elastic_pass_changes_no_row_of_E_outside_the_step_stores():
-    """The speed benchmark's floor counts as written only the rows of E in kernels.STEP_STORES: in the elastic
+    """The speed benchmark's floor counts as written only the rows of E in state.STEP_STORES: in the elastic
     state it times (random velocities, half of the elements in tension) no other row changes, and the stored
     ones that carry the state do."""
     import sys
@@ -222,10 +223,10 @@ def test_an_elastic_pass_changes_no_row_of_E_outside_the_step_stores():
     _elastic_state(m)
     E0 = m.E.copy()
     _pass(m, 0.5 * m.dt)
-    others = [f for f in range(K.N_FIELDS) if f not in K.STEP_STORES]
-    assert sorted(others) == sorted([K.MUP, K.DMG, K.V0, K.MASS])
+    others = [f for f in range(fields.N_FIELDS) if f not in fields.STEP_STORES]
+    assert sorted(others) == sorted([fields.MUP, fields.DMG, fields.V0, fields.MASS])
     assert np.array_equal(m.E[others], E0[others])
-    assert all(np.any(m.E[f] != E0[f]) for f in (K.SRR, K.SZZ, K.STT, K.SRZ, K.P, K.IE, K.EPSEFF))
+    assert all(np.any(m.E[f] != E0[f]) for f in (fields.SRR, fields.SZZ, fields.STT, fields.SRZ, fields.P, fields.IE, fields.EPSEFF))
 
 
 def test_a_check_row_carries_its_deviation_and_verdict():

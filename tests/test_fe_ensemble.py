@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import pandas as pd
 import pytest
 
-from penetration.figures.fe_level import fe_contrast_band, fe_contrast_ensemble
+from penetration.tasks.fe_studies import fe_contrast_band, fe_contrast_ensemble
 from penetration.tasks.fe import fe_ensemble_shot
 
 NOSES = ("double_ogive", "crh45", "crh3")

@@ -2,16 +2,16 @@
 import numpy as np
 import pytest
 
-from penetration.fe.materials import Elastic
+from penetration.fe.constitutive import Elastic
 from penetration.fe.mesh import Grid
 from penetration.fe.shot import tunnel_eroded_share
-from penetration.fe.solver import Controls, Model
+from penetration.fe.model import Controls, Model
 
 
 @pytest.fixture
 def model():
     g = Grid.tensor(np.linspace(0, 0.2, 21), np.linspace(0, 1.0, 101))  # 10 mm elements
-    return Model(g, Elastic(2440, 30e9, 0.2), Controls(progress=False))
+    return Model(g, Elastic(2440, 30e9, 0.2), Controls())
 
 
 def test_a_tunnel_all_eroded_is_one_and_none_is_zero(model):

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from penetration import levels as L
+from penetration import concrete, levels as L
 from penetration.cavity import Controls as CavityControls, Mesh as CavityMesh
 from penetration.errors import ParameterError
 from penetration.geometry import Ogive
@@ -35,8 +35,8 @@ def table1():
 def test_scaling_returns_the_table1_set_exactly_at_48_mpa():
     base = table1()
     assert base.fc == 48e6
-    assert L.hjc_for_strength(48e6, base) == base
-    assert L.hjc_for_strength(48e6, base, 2440.0) == base
+    assert concrete.hjc_for_strength(48e6, base) == base
+    assert concrete.hjc_for_strength(48e6, base, 2440.0) == base
 
 
 def youngs(m: HJC):
@@ -47,7 +47,7 @@ def youngs(m: HJC):
 @pytest.mark.parametrize("fc", [25e6, 32.4e6, 101.4e6, 200e6])
 def test_scaling_follows_its_published_relations(fc):
     base = table1()
-    m = L.hjc_for_strength(fc, base, 2300.0)
+    m = concrete.hjc_for_strength(fc, base, 2300.0)
     # Holmquist, Johnson & Cook (1993): the crush point of the uniaxial compression test, pc = fc/3, mu_c = pc/K
     assert m.pc == pytest.approx(fc / 3, rel=1e-14)
     # ACI 318: E = 4700 sqrt(fc) MPa, so E/E(48) = sqrt(fc/48), at the Poisson ratio of Table 1's set
@@ -57,7 +57,7 @@ def test_scaling_follows_its_published_relations(fc):
     # fib Model Code 2010: fctm = 0.30 fc^(2/3) MPa, as a ratio to Table 1's T
     assert m.T / base.T == pytest.approx((fc / 48e6) ** (2 / 3), rel=1e-14)
     assert m.fc == fc and m.rho0 == 2300.0
-    for name in L.HJC_SCALING_RULE["carried_over"]:
+    for name in concrete.HJC_SCALING_RULE["carried_over"]:
         assert getattr(m, name) == getattr(base, name), name
 
 
@@ -71,7 +71,7 @@ def test_table1_tension_and_modulus_are_near_the_codes_at_48_mpa():
 @pytest.mark.parametrize("fc", [10e6, 250e6, math.nan])
 def test_scaling_refuses_strengths_outside_its_range(fc):
     with pytest.raises(ParameterError) as err:
-        L.hjc_for_strength(fc, HJC())
+        concrete.hjc_for_strength(fc, HJC())
     assert "fc" in str(err.value) and "allowed" in str(err.value) and "200" in str(err.value)
 
 
@@ -238,13 +238,13 @@ def test_the_trajectory_and_cavity_levels_read_no_fe_section(tmp_path):
     cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
     ref = ROOT / cfg["reference"]
     full = context_from_files(cfg, ref)
-    lean = context_from_files({k: cfg[k] for k in ("cavity", "validation")}, ref)
+    lean = context_from_files({k: cfg[k] for k in ("concrete", "cavity", "validation")}, ref)
     assert full.fe_settings is not None and lean.fe_settings is None
     assert lean.base == full.base and lean.cavity_mesh == full.cavity_mesh and lean.cavity_velocities == full.cavity_velocities
     cal = tmp_path / "cal.json"
     cal.write_text(json.dumps({"element_size": 0.01, "fs": 1.0, "elements_across_radius": 8}))
     with pytest.raises(ValueError, match="fe section"):
-        context_from_files({k: cfg[k] for k in ("cavity", "validation")}, ref, fe_cal=cal)
+        context_from_files({k: cfg[k] for k in ("concrete", "cavity", "validation")}, ref, fe_cal=cal)
 
 
 def test_predict_at_the_trajectory_level_adds_every_column(tmp_path):

@@ -4,7 +4,7 @@ import pandas as pd
 import pytest
 
 from penetration.mesh_convergence import size_regression
-from penetration.tasks.fe_convergence import extrapolation_rows
+from penetration.fe_studies import extrapolation_rows
 
 
 def test_an_exact_line_is_extrapolated_exactly_with_no_interval():

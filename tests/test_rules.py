@@ -166,16 +166,18 @@ def test_editing_a_module_reruns_exactly_its_users(tree, closures, module):
 
 
 def test_every_rule_declares_threads_resources_benchmark_and_log():
-    """What a cluster profile and the cost figures use: threads, memory and runtime, a benchmark record."""
-    import re
-    text = "\n".join(p.read_text() for p in sorted((ROOT / "workflow/rules").glob("*.smk")))
-    blocks = [b for b in re.split(r"^rule ", text, flags=re.M)[1:] if "output:" in b]  # not the targets (all, studies, sweep)
-    assert len(blocks) == len(rule_names())
-    for block in blocks:
-        name = block.split(":", 1)[0]
-        for key in ("threads:", "resources: mem_mb=", "runtime=", f'benchmark: "results/benchmarks/{name}', "log:",
-                    '**task("'):
-            assert key in block, f"rule {name} lacks {key}"
+    """What a cluster profile and the cost figures use: threads, memory and runtime, a benchmark record named after
+    the rule, a log; and the task convention (the task module and its code as inputs, the one script). Read from the
+    workflow as Snakemake loads it: a rule may inherit these from its kind's first rule (use rule ... with:)."""
+    from workflow_rules import loaded_rules
+    rules = {name: r for name, r in loaded_rules().items() if r.output}  # not the targets (all, studies, sweep)
+    assert set(rules) == rule_names()
+    for name, r in rules.items():
+        assert {"_cores", "mem_mb", "runtime"} <= set(r.resources), f"rule {name} lacks threads or resources"
+        assert str(r.benchmark).startswith(f"results/benchmarks/{name}"), f"rule {name}: benchmark {r.benchmark}"
+        assert len(r.log) == 1, f"rule {name} lacks its log"
+        assert r.input.get("task") and r.input.get("code"), f"rule {name} lacks **task(...)"
+        assert r.script == "../scripts/run_task.py", f"rule {name}: script {r.script}"
 
 
 def test_no_rule_takes_the_whole_config_as_a_param():

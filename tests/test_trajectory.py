@@ -97,7 +97,7 @@ def test_scene_schema_effects_are_the_registries():
     """Every effect a scene may name is a registered trajectory or material effect, and the reverse."""
     import json
     from pathlib import Path
-    from penetration.cavity_level import MATERIAL_EFFECTS
+    from penetration.hjc_effects import MATERIAL_EFFECTS
     from penetration.scenes import FE_EFFECTS
     from penetration.trajectory import EFFECTS
     schema = json.loads((Path(__file__).resolve().parents[1] / "workflow/schemas/scene.schema.json").read_text())

@@ -26,12 +26,18 @@ from scipy.optimize import brentq
 
 from .cavity import Controls, Mesh, stress_table
 from .hjc import HJC
-from .hjc_effects import MATERIAL_EFFECTS
 from .nstar import nstar
 from .trajectory import assemble, integrate
 
 
 INTERPOLATIONS = ("pchip_v2", "linear_v")
+
+
+def cavity_settings(cfg):
+    """Mesh and solver controls of the cavity solver from the ``cavity`` config section."""
+    return (Mesh(zones=cfg["zones"], cap=cfg["cap"]),
+            Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"],
+                     quasi_static_from=tuple(cfg["quasi_static_from"])))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -93,23 +99,6 @@ def cavity_trajectory(nose, mass, vs, table: SigmaTable, effects=("crater", "cav
     """Rigid trajectory with the tabulated normal stress over the nose."""
     asm = assemble(effects, nose, nstar(nose), mass, None, vs, mu=mu, sigma_n=table)
     return integrate(asm, mass, vs, rtol=rtol)
-
-
-def material_switches(effects, conventions, configured) -> dict:
-    """HJC fields a scene changes from the configured material.
-
-    ``effects``: the scene's effect names (the material effects it leaves
-    out are switched off); ``conventions``: the lock and tension conventions
-    it names; ``configured``: the configuration's conventions. Empty when the
-    scene needs nothing but the configured material.
-    """
-    listed = set(effects)
-    over = {}
-    for name, off in MATERIAL_EFFECTS.items():
-        if name not in listed:
-            over.update(off)
-    over.update({k: v for k, v in conventions.items() if v != configured[k]})
-    return over
 
 
 CALIBRATABLE = {"strength_scale": (0.05, 2.0), "erosion_strain": (0.02, 2.0)}

@@ -140,7 +140,8 @@ def estimate_cost(nose, mass, velocity, material, settings: Settings, target: Ta
     import time
     from .fe.mesh import node_lines
     from .fe.shot import body_outline, mesh_spec, model_for
-    from .fe.solver import Projectile, run
+    from .fe.contact import Projectile
+    from .fe.solver import run
     from .errors import ParameterError
     h = settings.element_size
     r, z = node_lines(mesh_spec(nose, settings, target, expected_depth))
@@ -172,8 +173,7 @@ def estimate_cost(nose, mass, velocity, material, settings: Settings, target: Ta
     proj = Projectile(zeta, rho, mass, 0.0, velocity, 0.0)
     per = []
     for chunk in range(3):
-        model.controls = dataclasses.replace(model.controls, end_time=model.t + probe_time, output_interval=probe_time,
-                                             progress=False)
+        model.controls = dataclasses.replace(model.controls, end_time=model.t + probe_time, output_interval=probe_time)
         s0, t0 = model.steps, time.perf_counter()
         run(model, proj)
         wall, steps, computed = time.perf_counter() - t0, model.steps - s0, (model.j1 - model.j0) * model.nr

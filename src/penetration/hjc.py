@@ -225,6 +225,25 @@ def unloading_modulus(mu_max, q):
 
 
 @njit(cache=True, inline="always")
+def longitudinal_modulus(mu, mu_max, q):
+    """K + 4G/3 of the longitudinal wave speed: the unloading bulk modulus (Eq 14), or the fully dense curve's
+    tangent where it is stiffer (mu beyond the end of crushing)."""
+    K = unloading_modulus(mu_max, q)
+    mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
+    dense = q[I_K1] + 2.0 * q[I_K2] * mb + 3.0 * q[I_K3] * mb * mb   # computed, then selected (as in quick_update)
+    K = max(K, dense) if mu > q[I_MUCRUSH] else K
+    return K + 4.0 * q[I_G] / 3.0
+
+
+@njit(cache=True, inline="always")
+def deviatoric_trial(s0, s1, s2, s3, d0, d1, d2, d3, G):
+    """Elastic predictor of the deviatoric stress (rr/xx, zz/yy, tt/zz normal, rz/xy shear as a tensor component):
+    s + 2G dev(d) for the strain increment d."""
+    tr = (d0 + d1 + d2) / 3.0
+    return s0 + 2.0 * G * (d0 - tr), s1 + 2.0 * G * (d1 - tr), s2 + 2.0 * G * (d2 - tr), s3 + 2.0 * G * d3
+
+
+@njit(cache=True, inline="always")
 def eos(mu, mu_max, q):
     """Pressure, new mu_max and permanent crush strain mu_p (before the cut-off).
 
@@ -394,11 +413,7 @@ def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2,
     the yield surface is evaluated at every call and the return selected.
     """
     G = q[I_G]
-    tr = (d0 + d1 + d2) / 3.0
-    s0 += 2.0 * G * (d0 - tr)
-    s1 += 2.0 * G * (d1 - tr)
-    s2 += 2.0 * G * (d2 - tr)
-    s3 += 2.0 * G * d3
+    s0, s1, s2, s3 = deviatoric_trial(s0, s1, s2, s3, d0, d1, d2, d3, G)
     s4 += 2.0 * G * d4
     s5 += 2.0 * G * d5
     p, mu_max, mu_p_new = eos(mu, mu_max, q)

@@ -12,18 +12,8 @@ Levels (``LEVELS``):
 - ``fe``: the 2-D axisymmetric finite-element level (HJC target with erosion,
   rigid projectile), minutes per shot.
 
-Concrete of any strength at the cavity and fe levels (``hjc_for_strength``):
-the HJC set of Table 1 (fc = 48 MPa) scaled to the shot's fc by Holmquist,
-Johnson & Cook's (1993) own determination of the crush point (pc = fc/3, the
-pressure of the uniaxial compression test at failure; mu_c = pc/K with K the
-elastic bulk modulus), the elastic moduli scaled as E in ACI 318-19
-(Eq 19.2.2.1.b: E = 4700 sqrt(fc) MPa, Poisson's ratio kept) and the tensile
-strength as fctm in the fib Model Code 2010 (Eq 5.1-3a: 0.30 fc^(2/3)). Each
-is applied as a ratio to its value at 48 MPa, so that the Table 1 set is
-returned exactly at 48 MPa. Carried over unchanged: the normalised strength
-and damage constants (A, B, N, C, eps0, SFMAX, D1, D2, EFMIN: HJC normalises
-them by fc), the compaction of the fully dense material (pl, mu_l, K1-K3)
-and the conventions of the configuration. The density is the shot's.
+The concrete of the cavity and fe levels is Table 1's HJC set with the configured conventions (``Context.base``),
+scaled to the shot's fc and density by the HJC scaling rule of ``concrete`` (``concrete.shot_concrete``).
 
 Calibrations carried over from the DO1 shot (5.1 m at 835 m/s, 48 MPa):
 the cavity level's strength_scale (a factor on the strength surface) and the
@@ -44,6 +34,7 @@ import numpy as np
 
 from .cavity import Controls as CavityControls, Mesh as CavityMesh
 from .cavity_level import SigmaTable, cavity_trajectory, sigma_table
+from .concrete import shot_concrete
 from .dop import penetration_depth
 from .errors import ParameterError
 from .geometry import NOSES, Flat, Ogive, make_nose
@@ -54,29 +45,10 @@ from .shots import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, field_v
                     shot_values)
 from .shots import output_fields as shots_output_fields, predict_rows as shots_predict_rows
 from .trajectory import assemble, integrate
-from .units import MPA
 
 LEVELS = ("analytic", "trajectory", "cavity", "fe")
 TRAJECTORY_EFFECTS = ("crater", "static", "inertial")
 CAVITY_EFFECTS = ("crater", "cavity")
-# fc range of the HJC scaling rule (Pa): the design-code relations it uses are stated for normal- and
-# high-strength concrete; outside it the rule is an extrapolation the cavity and fe levels refuse
-FC_RULE_RANGE = (20e6, 200e6)
-HJC_SCALING_RULE = {
-    "name": "HJC set of Table 1 scaled with fc",
-    "scaled": {
-        "pc": "pc = fc/3 (Holmquist, Johnson & Cook 1993: the pressure of the uniaxial compression test at failure)",
-        "muc": "muc = pc/K, K scaled as E (Holmquist, Johnson & Cook 1993; ACI 318-19 Eq 19.2.2.1.b)",
-        "G": "G proportional to E = 4700 sqrt(fc) MPa at a fixed Poisson's ratio (ACI 318-19 Eq 19.2.2.1.b)",
-        "T": "T proportional to fctm = 0.30 fc^(2/3) MPa (fib Model Code 2010, Eq 5.1-3a)",
-        "fc": "the shot's compressive strength",
-        "rho0": "the shot's density",
-    },
-    "carried_over": ["A", "B", "N", "C", "eps0", "smax", "D1", "D2", "efmin", "pl", "mul", "k1", "k2", "k3",
-                     "lock", "tension", "rate_floor"],
-    "exact_at": "fc = 48 MPa (Table 1): every scaled quantity is its Table 1 value times a ratio equal to 1",
-    "range_pa": list(FC_RULE_RANGE),
-}
 # Ranges of a user's shot (SI, exclusive low, inclusive high) by UserShot attribute: those of shots.SHOT_FIELDS
 SHOT_RANGES = {attr: (SHOT_FIELDS[name].lo * SHOT_FIELDS[name].si, SHOT_FIELDS[name].hi * SHOT_FIELDS[name].si)
                for attr, name in ATTRIBUTE_FIELDS.items()}
@@ -106,18 +78,6 @@ class UserShot:
         if self.length is not None and self.length < self.nose.length:
             raise ParameterError("shot", "length_m", self.length,
                                  f">= the nose length {self.nose.length:.6g} m (the projectile is nose and shank)")
-
-
-def hjc_for_strength(fc, base: HJC, density=None) -> HJC:
-    """The HJC set ``base`` (Table 1) scaled to compressive strength fc (Pa) by HJC_SCALING_RULE."""
-    lo, hi = FC_RULE_RANGE
-    if not (math.isfinite(fc) and lo <= fc <= hi):
-        raise ParameterError("shot", "fc_MPa", fc / MPA, f"{lo / MPA:g} <= fc_MPa <= {hi / MPA:g} at the cavity and fe "
-                             "levels: the range of the HJC scaling rule")
-    r = fc / base.fc
-    s = math.sqrt(r)
-    return dataclasses.replace(base, fc=fc, pc=base.pc * r, muc=base.muc * s, G=base.G * s, T=base.T * r ** (2.0 / 3.0),
-                               rho0=base.rho0 if density is None else density)
 
 
 def closed_form(mass, radius, n, target: Target, vs):
@@ -161,7 +121,8 @@ class LevelResult:
 
 @dataclass
 class Context:
-    """What the levels beyond the closed form need: the base HJC set, the DO1 calibrations, the solvers' settings.
+    """What the levels beyond the closed form need: the base HJC set (Table 1 with the configured conventions,
+    concrete.configured), the DO1 calibrations, the solvers' settings.
 
     ``tables`` caches sigma_n tables per (material, radius), so that shots on a few distinct concretes and
     calibers cost a few tables; ``table_builds`` counts the tables computed.
@@ -227,10 +188,17 @@ def _need(value, name, how, owner="levels"):
 
 
 def cavity_material(shot: UserShot, ctx: Context) -> HJC:
+    """The cavity level's concrete of a shot: the base set scaled to its fc and density, at the DO1 strength scale."""
     scale = _need(ctx.strength_scale, "strength_scale", "the cavity level's DO1 calibration (its committed record "
                   "figures/calibration_cavity_do1.csv: snakemake -c2 figures/calibration_cavity_do1.csv; or give a "
                   "strength scale: --strength-scale)")
-    return dataclasses.replace(hjc_for_strength(shot.fc, ctx.base, shot.density), strength_scale=scale)
+    return shot_concrete(ctx.base, shot.fc, shot.density, scale)
+
+
+def fe_material(shot: UserShot, ctx: Context) -> HJC:
+    """The fe level's concrete of a shot: the base set scaled to its fc and density (its calibration, the failure
+    strain, belongs to the run settings)."""
+    return shot_concrete(ctx.base, shot.fc, shot.density)
 
 
 def check_table_span(shot: UserShot, ctx: Context):
@@ -279,7 +247,7 @@ def _fe(shot, ctx, log=None):
     from .fe.shot import TargetSpec, run_shot
     from .fe_level import estimate_cost, expected_depth
     settings, k = fe_settings_for(shot, ctx)
-    material = hjc_for_strength(shot.fc, ctx.base, shot.density)
+    material = fe_material(shot, ctx)
     target = TargetSpec("semi_infinite", ctx.fe_target_radius * k)
     expected = expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)
     est = None

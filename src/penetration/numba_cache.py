@@ -20,7 +20,8 @@ import hashlib
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
-KERNEL_SOURCES = ("hjc.py", "cavity.py", "fe/kernels.py", "fe/solver.py", "fe/materials.py")
+KERNEL_SOURCES = ("hjc.py", "cavity.py", *(f"fe/{m}.py" for m in ("state", "constitutive", "element", "timestep", "erosion",
+                                                           "element_pass", "nodes", "contact", "solver")))
 STAMP = "numba_sources.sha256"
 
 

@@ -40,7 +40,7 @@ def main() -> int:
     print(f"{'shot':55s} {'estimate s':>10s} {'measured s':>10s} {'ratio':>6s}")
     for name, shot in SHOTS.items():
         settings, k = L.fe_settings_for(shot, ctx)
-        material = L.hjc_for_strength(shot.fc, ctx.base, shot.density)
+        material = L.fe_material(shot, ctx)
         target = TargetSpec("semi_infinite", ctx.fe_target_radius * k)
         exp = expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)
         est = estimate_cost(shot.nose, shot.mass, shot.velocity, material, settings, target, exp)

@@ -35,9 +35,11 @@ import numpy as np
 from numba import njit, prange
 
 from nstar_speed import machine
-from penetration.fe import kernels as K
+from penetration.fe import state as fields
+from penetration.fe.element_pass import element_pass
 from penetration.fe.mesh import MeshSpec, build
-from penetration.fe.solver import Controls, Model
+from penetration.fe.model import Controls, Model
+from penetration.fe.nodes import move as move_nodes, node_pass
 from penetration.hjc import HJC
 
 DO1 = "results/fe/full/do1/double_ogive_835.json"
@@ -123,9 +125,9 @@ def vector_isa():
 
 def step_bytes(m: Model):
     """Bytes one explicit step reads and writes, each array once (element pass, node pass, move): every row of
-    E read, the rows the element pass stores for every element (kernels.STEP_STORES) written."""
+    E read, the rows the element pass stores for every element (state.STEP_STORES) written."""
     nodes = [m.r, m.z, m.vr, m.vz]
-    element = m.E.nbytes + m.E[list(K.STEP_STORES)].nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
+    element = m.E.nbytes + m.E[list(fields.STEP_STORES)].nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
     # the dashpot arrays are read on the grid's edges and in rows flagged in rowdash only
     g = m.grid
     edge = np.zeros((g.nz + 1, g.nr + 1), bool)
@@ -151,17 +153,15 @@ def _elastic_time(spec: MeshSpec, repeat, element_steps=6e6):
     """Seconds per element-step of one full step (node pass, move, element pass), elastic state, best of repeat;
     the number of elements; the bytes one step moves."""
     m = Model(build(spec), HJC(), Controls())
-    vr0, vz0 = np.zeros_like(m.vr), np.zeros_like(m.vz)
     dt = 0.5 * m.dt
-    m.ctl[K.C_DT] = dt
+    m.ctl[fields.C_DT] = dt
     _elastic_state(m)
+    span = m.span()
 
     def step():
-        K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash,
-                    m.rowdash, m.zp, m.zs, m.rowbnd)
-        K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt, 0, m.r.size)
-        K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
-                       m.rowhg, m.rowero, m.rowfail)
+        node_pass(span, m.F, m.alive, m.mass, m.nstate, m.fix, m.dash, m.rowdash, (m.zp, m.zs), dt, m.V, m.rows.f)
+        move_nodes(span, m.X, m.V, m.nstate, dt)
+        element_pass(span, m.X, m.V, m.kind, m.q, m.ctl, m.E, m.F, m.alive, m.rows.f, m.rows.i)
 
     step()
     ne = m.grid.elements
@@ -173,21 +173,22 @@ def _window_step_time(m: Model, steps, repeat):
     """Seconds per element-step of one explicit step over the active window of a copy of m (no contact), and the
     fraction of the window's live elements whose plastic strain or crush (mu_p) grows in the first such step:
     those take the scalar HJC update, the others the vectorised elastic one."""
-    r, z, vr, vz, E, alive, F = (a.copy() for a in (m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F))
-    vr0, vz0 = vr.copy(), vz.copy()
-    ctl, rowdt, rowhg, rowero, rowfail, rowbnd = (a.copy() for a in (m.ctl, m.rowdt, m.rowhg, m.rowero, m.rowfail, m.rowbnd))
-    dt = float(ctl[K.C_DT])
+    X, V, E, alive, F = (a.copy() for a in (m.X, m.V, m.E, m.alive, m.F))
+    r, z, vr, vz = X[0], X[1], V[fields.VR], V[fields.VZ]
+    rows = m.rows.copy()
+    ctl = m.ctl.copy()
+    dt = float(ctl[fields.C_DT])
+    span = m.span()
 
     def step():
-        K.node_pass(m.nr, m.nz, m.j0, m.j1, F, alive, m.mass, vr, vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.rowdash,
-                    m.zp, m.zs, rowbnd)
-        K.move(r, z, vr, vz, m.nstate, dt, m.j0 * (m.nr + 1), (m.j1 + 1) * (m.nr + 1))
-        K.element_pass(m.nr, m.nz, m.j0, m.j1, r, z, vr, vz, E, alive, F, m.kind, m.q, ctl, rowdt, rowhg, rowero, rowfail)
+        node_pass(span, F, alive, m.mass, m.nstate, m.fix, m.dash, m.rowdash, (m.zp, m.zs), dt, V, rows.f)
+        move_nodes(span, X, V, m.nstate, dt)
+        element_pass(span, X, V, m.kind, m.q, ctl, E, F, alive, rows.f, rows.i)
 
     step()
     w = slice(m.j0 * m.nr, m.j1 * m.nr)
-    grow = (E[K.EPSP, w] > m.E[K.EPSP, w]) | (E[K.MUP, w] > m.E[K.MUP, w])
-    live = m.alive[w] == 1
+    grow = (E[fields.EPSP, w] > m.E[fields.EPSP, w]) | (E[fields.MUP, w] > m.E[fields.MUP, w])
+    live = m.alive[w] == fields.LIVE
     flowing = float((grow & live).sum() / max(live.sum(), 1))
     return _best(step, steps, repeat, _snapshot((r, z, vr, vz, E, alive, F))) / ((m.j1 - m.j0) * m.nr), flowing
 
@@ -214,21 +215,19 @@ def main():
     print(f"STREAM triad: {bw0 / 1e9:.1f} GB/s (measured again at the end)")
     # a DO1-like target (the core and graded far field of the default mesh, 2.5 m deep) in motion
     m = Model(build(MeshSpec(args.size, 0.21, 2.5, 1.2, 2.5, 1.1)), HJC(), Controls())
-    vr0, vz0 = np.zeros_like(m.vr), np.zeros_like(m.vz)
     base = (m.r.copy(), m.z.copy(), m.E.copy())
     dt = 0.5 * m.dt
-    m.ctl[K.C_DT] = dt
+    m.ctl[fields.C_DT] = dt
+    span = m.span()
 
     def node():
-        K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dt, m.fix, m.dash, m.rowdash,
-                    m.zp, m.zs, m.rowbnd)
+        node_pass(span, m.F, m.alive, m.mass, m.nstate, m.fix, m.dash, m.rowdash, (m.zp, m.zs), dt, m.V, m.rows.f)
 
     def move():
-        K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt, 0, m.r.size)
+        move_nodes(span, m.X, m.V, m.nstate, dt)
 
     def element():
-        K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
-                       m.rowhg, m.rowero, m.rowfail)
+        element_pass(span, m.X, m.V, m.kind, m.q, m.ctl, m.E, m.F, m.alive, m.rows.f, m.rows.i)
 
     def step():
         node()
@@ -245,7 +244,7 @@ def main():
     times = {}
     for label in ("elastic", "plastic"):
         m.r[:], m.z[:], m.E[:] = base[0], base[1], base[2]
-        m.alive[:] = 1
+        m.alive[:] = fields.LIVE
         if label == "elastic":
             _elastic_state(m)
         else:
@@ -256,8 +255,8 @@ def main():
         restore = _snapshot((m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F)) if label == "plastic" else None
         split = [x / ne for x in _best_split((node, move, element), args.steps, args.repeat, restore)]
         per = times[label] = sum(split)
-        yielded = float((m.E[K.EPSP] > 0).mean())
-        live = float((m.alive == 1).mean())
+        yielded = float((m.E[fields.EPSP] > 0).mean())
+        live = float((m.alive == fields.LIVE).mean())
         print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step; "
               f"node pass {split[0] * 1e9:.1f}, move {split[1] * 1e9:.1f}, element pass {split[2] * 1e9:.1f} ns")
     # cache or memory? The arrays of the benchmark mesh (and of the DO1 window) fit in the last-level cache of the
@@ -282,13 +281,13 @@ def main():
         snap = {}
         solver_run = fe_shot.run
 
-        def run_with_snapshot(model, projectile=None, callback=None, log=None):
+        def run_with_snapshot(model, projectile=None, callback=None):
             def cb(mm, t):
                 callback(mm, t)
                 if "t" not in snap and t >= 6e-3:
                     per, flowing = _window_step_time(mm, args.steps, args.repeat)
-                    snap.update(t=t, per=per, flowing=flowing, window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[K.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
-            return solver_run(model, projectile, callback=cb, log=log)
+                    snap.update(t=t, per=per, flowing=flowing, window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[fields.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
+            return solver_run(model, projectile, callback=cb)
 
         fe_shot.run = run_with_snapshot
         r = run_shot(nose, ref["mass"], ref["velocity"], HJC(),

@@ -16,7 +16,7 @@ rule hjc_eos_paths:
 rule calibrate_cavity_do1:
     input: **task("tasks.cavity"), do1="results/geometry/double_ogive_table4.json", reference=config["reference"],
     output: json="results/calibration/cavity_do1.json",
-    params: cfg=config["cavity"], shot=config["calibration"]["do1"],
+    params: cfg=config["cavity"], hjc=config["concrete"], shot=config["calibration"]["do1"],
     threads: 2
     resources: mem_mb=2000, runtime=30
     benchmark: "results/benchmarks/calibrate_cavity_do1.tsv"
@@ -27,7 +27,7 @@ rule calibrate_cavity_do1:
 rule cavity_table:
     input: **task("tasks.cavity"), cal="results/calibration/cavity_do1.json", reference=config["reference"],
     output: csv="results/cavity/sigma_n.csv",
-    params: cfg=config["cavity"], projectile=config["projectile"],
+    params: cfg=config["cavity"], hjc=config["concrete"], projectile=config["projectile"],
     threads: 2
     resources: mem_mb=2000, runtime=10
     benchmark: "results/benchmarks/cavity_table.tsv"
@@ -40,7 +40,7 @@ rule scene_cavity:
            cal="results/calibration/cavity_do1.json", reference=config["reference"],
            scene="workflow/scenes/cavity/{scene}.yaml", schema=SCENE_SCHEMA,
     output: dop="results/scenes/cavity/{scene}.csv", histories="results/scenes/cavity/{scene}_histories.csv",
-    params: rtol=config["cavity"]["rtol"], cfg=config["cavity"],
+    params: rtol=config["cavity"]["rtol"], cfg=config["cavity"], hjc=config["concrete"],
     threads: 2
     resources: mem_mb=2000, runtime=20
     benchmark: "results/benchmarks/scene_cavity_{scene}.tsv"

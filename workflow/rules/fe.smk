@@ -2,6 +2,7 @@
 # or a convergence or band profile of fe_convergence.profiles, fe_band.bands);
 # one job per shot (FE runs use both cores: threads 2). FE_OUTPUTS are the paper's (rule all); the rules from
 # fe_mesh_study on (mesh study, contrast convergence, bands, ensembles, rear face, moving window) are studies.
+# A figure is declared like fe_fig12, a table like fe_table3 (use rule ... with:); the FE runs each their own.
 
 FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
 # the scene whose job computes each shot: a shot that two scenes share with the same physics runs once (Fig 15's
@@ -25,7 +26,7 @@ def fe_unique_shots(*scenes):
 rule calibrate_fe_do1:
     input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json", reference=config["reference"],
     output: json="results/fe/{profile}/calibration_h{size}.json",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], shot=config["calibration"]["do1"],
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], shot=config["calibration"]["do1"],
             profile=lambda w: w.profile, size=lambda w: w.size,
     threads: 2
     resources: mem_mb=2000, runtime=60
@@ -40,7 +41,8 @@ rule fe_shot:
     output: json="results/fe/{profile}/{scene}/{nose}_{velocity}.json",
             histories="results/fe/{profile}/{scene}/{nose}_{velocity}_histories.csv",
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile, nose=lambda w: w.nose,
+            audit="results/fe/{profile}/{scene}/{nose}_{velocity}_audit.csv",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile, nose=lambda w: w.nose,
             velocity=lambda w: w.velocity,
     # the scenes' and noses' names exactly, so that the benchmark record's name (underscores between the
     # wildcards) names one job: accuracy_cost reads these records
@@ -53,27 +55,12 @@ rule fe_shot:
     script: "../scripts/run_task.py"
 
 
-# The calibration the fe level of the command line carries over at a profile's mesh, committed (it runs from a fresh
-# clone).
-rule fe_calibration_record:
-    input: **task("tasks.fe"), cal=lambda w: fe_calibration(w.profile),
-    output: csv="figures/fe/{profile}/calibration_fe_do1.csv",
-    threads: 1
-    resources: mem_mb=500, runtime=2
-    benchmark: "results/benchmarks/fe_calibration_record_{profile}.tsv"
-    log: "results/logs/fe_calibration_record_{profile}.log",
-    script: "../scripts/run_task.py"
-
-
 def fe_out(name):
     return f"figures/fe/{{profile}}/{name}"
 
 
-FE_FIGURE = dict(threads=1)
-
-
 rule fe_table3:
-    input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("table3"),
+    input: **task("tasks.fe_tables"), reference=config["reference"], shots=fe_shots("table3"),
            cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/table3.yaml",
     output: csv=fe_out("table3.csv"), ratios=fe_out("table3_ratios.csv"),
     threads: 1
@@ -81,6 +68,16 @@ rule fe_table3:
     benchmark: "results/benchmarks/fe_table3_{profile}.tsv"
     log: "results/logs/fe_table3_{profile}.log",
     script: "../scripts/run_task.py"
+
+
+# The calibration the fe level of the command line carries over at a profile's mesh, committed (it runs from a fresh
+# clone).
+use rule fe_table3 as fe_calibration_record with:
+    input: **task("tasks.fe"), cal=lambda w: fe_calibration(w.profile),
+    output: csv="figures/fe/{profile}/calibration_fe_do1.csv",
+    resources: mem_mb=500, runtime=2
+    benchmark: "results/benchmarks/fe_calibration_record_{profile}.tsv"
+    log: "results/logs/fe_calibration_record_{profile}.log",
 
 
 rule fe_fig12:
@@ -95,81 +92,63 @@ rule fe_fig12:
     script: "../scripts/run_task.py"
 
 
-rule fe_meshes:
+use rule fe_table3 as fe_meshes with:
     input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json",
     output: csv="results/fe/{profile}/meshes.csv",
     params: cfg=lambda w: fe_cfg(w.profile), profile=lambda w: w.profile,
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_meshes_{profile}.tsv"
     log: "results/logs/fe_meshes_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_fig13:
+use rule fe_fig12 as fe_fig13 with:
     input: **task("figures.fe_level"), meshes="results/fe/{profile}/meshes.csv",
     output: png=report(fe_out("fig13.png"), caption="../report/captions/fe_fig13.rst", category="Finite-element level"), csv=fe_out("fig13.csv"),
     params: dpi=config["figures"]["dpi"], profile=lambda w: w.profile,
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_fig13_{profile}.tsv"
     log: "results/logs/fe_fig13_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_fig14:
+use rule fe_fig12 as fe_fig14 with:
     input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("table3"), histories=fe_histories("table3"),
     output: png=report(fe_out("fig14.png"), caption="../report/captions/fe_fig14.rst", category="Finite-element level"), csv=fe_out("fig14.csv"), cutoff_png=report(fe_out("fig14_cutoff.png"), caption="../report/captions/fe_fig14_cutoff.rst", category="Finite-element level"),
             cutoff_csv=fe_out("fig14_cutoff.csv"),
     params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_fig14_{profile}.tsv"
     log: "results/logs/fe_fig14_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_fig15:
+use rule fe_fig12 as fe_fig15 with:
     input: **task("figures.fe_level"), reference=config["reference"], shots=fe_shots("fig15"),
     output: png=report(fe_out("fig15.png"), caption="../report/captions/fe_fig15.rst", category="Finite-element level"), csv=fe_out("fig15.csv"),
     params: dpi=config["figures"]["dpi"], limit=study_input("figures/fe/contrast_extrapolation_depths.csv"),
             profile=lambda w: w.profile,
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_fig15_{profile}.tsv"
     log: "results/logs/fe_fig15_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_do1_fields:
+use rule fe_fig12 as fe_do1_fields with:
     input: **task("figures.fe_level"), shot="results/fe/{profile}/do1/double_ogive_835.json",
            fields="results/fe/{profile}/do1/double_ogive_835_fields.csv",
     output: png=report(fe_out("do1_fields.png"), caption="../report/captions/fe_do1_fields.rst", category="Finite-element level"), csv=fe_out("do1_profile.csv"),
     params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_do1_fields_{profile}.tsv"
     log: "results/logs/fe_do1_fields_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_mesh_study:
-    input: **task("figures.fe_level"),
+use rule fe_fig12 as fe_mesh_study with:
+    input: **task("tasks.fe_studies"),
            calibrations=lambda w: [f"results/fe/{w.profile}/calibration_h{h}.json" for h in config["fe"]["profiles"][w.profile]["mesh_study"]],
     output: png=report("figures/timing/fe_mesh_study_{profile}.png", caption="../report/captions/fe_mesh_study.rst", category="Timing (machine-dependent)"), csv="figures/timing/fe_mesh_study_{profile}.csv",
     params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_mesh_study_{profile}.tsv"
     log: "results/logs/fe_mesh_study_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
 rule fe_nose_pressure:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"], cal=lambda w: fe_calibration(w.profile),
            scene="workflow/scenes/fe/fig15.yaml", schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/nose_pressure.json",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile,
             steel_yield=config["fe_checks"]["steel_yield_pa"],
     threads: 2
     resources: mem_mb=2000, runtime=10
@@ -188,17 +167,14 @@ rule fe_verification:
     script: "../scripts/run_task.py"
 
 
-rule fe_summary:
-    input: **task("figures.fe_level"), shots=fe_unique_shots("table3", "fig15", "do1"),
+use rule fe_table3 as fe_summary with:
+    input: **task("tasks.fe_tables"), shots=fe_unique_shots("table3", "fig15", "do1"),
            do1="results/fe/{profile}/do1/double_ogive_835.json", block="results/fe/{profile}/do1_block/double_ogive_835.json",
            cal=lambda w: fe_calibration(w.profile), pressure="results/fe/{profile}/nose_pressure.json",
     output: json=fe_out("summary.json"), timing="figures/timing/fe_do1_{profile}.json",
     params: profile=lambda w: w.profile,
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_summary_{profile}.tsv"
     log: "results/logs/fe_summary_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
 FE_OUTPUTS = ["calibration_fe_do1.csv", "table3.csv", "table3_ratios.csv", "fig12.png", "fig12.csv", "fig13.png", "fig13.csv", "fig14.png",
@@ -206,57 +182,48 @@ FE_OUTPUTS = ["calibration_fe_do1.csv", "table3.csv", "table3_ratios.csv", "fig1
               "do1_profile.csv", "summary.json"]
 
 
-rule fe_diff:
-    input: **task("figures.fe_level"), reference=config["reference"], table3=fe_out("table3.csv"),
+use rule fe_table3 as fe_diff with:
+    input: **task("tasks.fe_tables"), reference=config["reference"], table3=fe_out("table3.csv"),
            ratios=fe_out("table3_ratios.csv"), do1="results/fe/{profile}/do1/double_ogive_835.json",
            cal=lambda w: fe_calibration(w.profile),
     output: csv=fe_out("diff.csv"), summary=fe_out("diff_summary.md"),
     params: profile=lambda w: w.profile, limit=study_input("figures/fe/contrast_extrapolation.csv"),
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_diff_{profile}.tsv"
     log: "results/logs/fe_diff_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
 FE_OUTPUTS += ["diff.csv", "diff_summary.md"]
 
 
-rule fe_contrasts:
-    input: **task("figures.fe_level"), shots=fe_shots("fig15"), reference=config["reference"],
+use rule fe_fig12 as fe_contrasts with:
+    input: **task("tasks.fe_tables"), shots=fe_shots("fig15"), reference=config["reference"],
     output: png=report(fe_out("contrasts.png"), caption="../report/captions/fe_contrasts.rst", category="Finite-element level"), csv=fe_out("contrasts.csv"),
     params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrasts_{profile}.tsv"
     log: "results/logs/fe_contrasts_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
 FE_OUTPUTS += ["contrasts.png", "contrasts.csv"]
 
 
-rule fe_contrast_convergence:
-    input: **task("figures.fe_level"), reference=config["reference"],
+use rule fe_fig12 as fe_contrast_convergence with:
+    input: **task("tasks.fe_studies"), reference=config["reference"],
            ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=["ci", "full", *CONVERGENCE_PROFILES]),
            tables=expand("figures/fe/{profile}/table3.csv", profile=["ci", "full", *CONVERGENCE_PROFILES]),
            calibrations=[fe_calibration(p) for p in ("ci", "full", *CONVERGENCE_PROFILES)],
            ensemble="figures/fe/contrast_ensemble.csv",
     output: png=report("figures/fe/contrast_convergence.png", caption="../report/captions/contrast_convergence.rst", category="Finite-element level"), csv="figures/fe/contrast_convergence.csv",
     params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_convergence.tsv"
     log: "results/logs/fe_contrast_convergence.log",
-    script: "../scripts/run_task.py"
 
 
 # every band's meshes, centre first, band after band (params.bands: the centres and their numbers of meshes)
 BAND_MESHES = [p for centre, band in BANDS.items() for p in (centre, *band)]
 
 
-rule fe_contrast_band:
-    input: **task("figures.fe_level"),
+use rule fe_fig12 as fe_contrast_band with:
+    input: **task("tasks.fe_studies"),
            ratios=expand("figures/fe/{profile}/table3_ratios.csv", profile=BAND_MESHES),
            tables=expand("figures/fe/{profile}/table3.csv", profile=BAND_MESHES),
            calibrations=[fe_calibration(p) for p in BAND_MESHES],
@@ -265,25 +232,19 @@ rule fe_contrast_band:
             meshes="figures/fe/contrast_band_meshes.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_band"]["confidence"],
             bands=[(centre, 1 + len(band)) for centre, band in BANDS.items()],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_band.tsv"
     log: "results/logs/fe_contrast_band.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_contrast_extrapolation:
-    input: **task("tasks.fe_convergence"), meshes="figures/fe/contrast_band_meshes.csv",
+use rule fe_fig12 as fe_contrast_extrapolation with:
+    input: **task("tasks.fe_studies"), meshes="figures/fe/contrast_band_meshes.csv",
            singles="figures/fe/contrast_convergence.csv",
            tables=expand("figures/fe/{profile}/table3.csv", profile=BAND_MESHES),
     output: png=report("figures/fe/contrast_extrapolation.png", caption="../report/captions/contrast_extrapolation.rst", category="Finite-element level"),
             csv="figures/fe/contrast_extrapolation.csv", depths="figures/fe/contrast_extrapolation_depths.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_band"]["confidence"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_extrapolation.tsv"
     log: "results/logs/fe_contrast_extrapolation.log",
-    script: "../scripts/run_task.py"
 
 
 def fe_ensemble_members(profile):
@@ -317,7 +278,7 @@ rule fe_ensemble_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
            cal=lambda w: fe_calibration(w.profile), scene=lambda w: f"workflow/scenes/fe/{realised(w)[0]}.yaml", schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{family}/{shot}_m{member}.json",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile,
             nose=lambda w: realised(w)[1], velocity=lambda w: realised(w)[2],
             member=lambda w: w.member, velocity_step=config["fe_ensemble"]["velocity_step"],
     wildcard_constraints: family="|".join(FE_REALISED), member=r"\d+",
@@ -329,20 +290,17 @@ rule fe_ensemble_shot:
     script: "../scripts/run_task.py"
 
 
-rule fe_contrast_ensemble:
-    input: **task("figures.fe_level"), ratios="figures/fe/full/table3_ratios.csv", table="figures/fe/full/table3.csv",
+use rule fe_fig12 as fe_contrast_ensemble with:
+    input: **task("tasks.fe_studies"), ratios="figures/fe/full/table3_ratios.csv", table="figures/fe/full/table3.csv",
            shots=[path.format(profile="full") for path in fe_shots("table3")], members=fe_ensemble_members("full"),
     output: png=report("figures/fe/contrast_ensemble.png", caption="../report/captions/contrast_ensemble.rst", category="Finite-element level"), csv="figures/fe/contrast_ensemble.csv",
             depths="figures/fe/contrast_ensemble_depths.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_contrast_ensemble.tsv"
     log: "results/logs/fe_contrast_ensemble.log",
-    script: "../scripts/run_task.py"
 
 
-rule fe_rear_face:
+use rule fe_fig12 as fe_rear_face with:
     input: **task("tasks.fe_rear_face"),
            shots=[p.format(profile="full") for scene in REAR_FACE_SCENES for p in fe_shots(scene)],
            histories=[p.format(profile="full") for scene in REAR_FACE_SCENES for p in fe_histories(scene)],
@@ -351,18 +309,15 @@ rule fe_rear_face:
             csv="figures/fe/rear_face.csv", members="figures/fe/rear_face_members.csv",
             effects="figures/fe/rear_face_effects.csv",
     params: dpi=config["figures"]["dpi"], confidence=config["fe_ensemble"]["confidence"], chain=REAR_FACE_SCENES,
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/fe_rear_face.tsv"
     log: "results/logs/fe_rear_face.log",
-    script: "../scripts/run_task.py"
 
 
 rule fe_window_study:
     input: **task("tasks.fe_window"), **GEOMETRY_RESULTS, reference=config["reference"],
            cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/do1.yaml", schema=SCENE_SCHEMA,
     output: runs=fe_out("window.csv"), summary=fe_out("window_summary.csv"), timing="figures/timing/fe_window_{profile}.csv",
-    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["cavity"], profile=lambda w: w.profile,
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile,
             velocity=lambda w: FE_SCENES["do1"][0][1], **config["fe_window"],
     threads: 2
     resources: mem_mb=2000, runtime=lambda w: 20 if w.profile == "ci" else 60

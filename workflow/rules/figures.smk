@@ -1,222 +1,68 @@
 # One rule per figure or table of the paper (and per study figure), named after it and after its module.
-# accuracy_* plot against wall time: their PNG and timings live under figures/timing/.
+# The paper's figures and tables are one table (PAPER_FIGURES, PAPER_TABLES) and one loop; the study figures share
+# accuracy_trajectory's declaration (use rule). accuracy_* plot against wall time: their PNG and timings live under
+# figures/timing/.
 
 
-rule fig01:
-    input: **task("figures.fig01"), shares="results/resistance/shares.csv",
-    output: png=report("figures/fig01.png", caption="../report/captions/fig01.rst", category="Paper figures"), csv="figures/fig01.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig01.tsv"
-    log: "results/logs/fig01.log",
-    script: "../scripts/run_task.py"
+# The paper's figures and tables, one rule each named after it and its module (figures.{name}): name -> the
+# results it reads. A figure writes figures/{name}.png and the CSV it drew, a table its CSV.
+PAPER_FIGURES = {
+    "fig01": dict(shares="results/resistance/shares.csv"),
+    "fig03": dict(curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv",
+                  reference=config["reference"]),
+    "fig04": dict(curves="results/nstar/curves.csv", fig4="results/geometry/double_ogive_fig4.json"),
+    "fig05": dict(curves="results/nstar/curves.csv"),
+    "fig06": dict(do1="results/geometry/double_ogive_table4.json"),
+    "fig07": dict(noses="results/nstar/noses.csv"),
+    "fig08": dict(histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv",
+                  diameter="results/geometry/diameter_450kg.json"),
+    "fig09": dict(histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv",
+                  diameter="results/geometry/diameter_450kg.json", reference=config["reference"]),
+    "fig10": dict(paths="results/hjc/eos_paths.csv", reference=config["reference"]),
+    "fig12": dict(histories="results/scenes/cavity/do1_histories.csv", reference=config["reference"]),
+    "fig14": dict(histories="results/scenes/cavity/table3_histories.csv", reference=config["reference"]),
+    "fig15": dict(dop="results/scenes/fig15.csv", cavity="results/scenes/cavity/fig15.csv",
+                  reference=config["reference"]),
+    "fig16": dict(curves="results/nstar/curves.csv", noses="results/nstar/noses.csv", reference=config["reference"]),
+}
+PAPER_TABLES = {
+    "table1": dict(reference=config["reference"]),
+    "table2": dict(reference=config["reference"]),
+    "table3": dict(analytic="results/scenes/table3.csv", stated="results/scenes/table3_stated.csv",
+                   fit="results/calibration/table3_calc.json", cavity="results/scenes/cavity/table3.csv",
+                   reference=config["reference"]),
+    "table4": dict(noses="results/nstar/noses.csv", reference=config["reference"]),
+}
+# a paper figure's params beyond its dpi
+PAPER_PARAMS = {name: dict(points=config["figures"]["points_per_segment"]) for name in ("fig06", "fig07")}
+FIGURES = [*PAPER_FIGURES, "validation", "cavity_sigma_n", "nose_contrasts"]  # the figures of rule all
+TABLES = list(PAPER_TABLES)
 
 
-rule fig03:
-    input: **task("figures.fig03"), curves="results/nstar/curves.csv", bands="results/nstar/k_bands.csv", reference=config["reference"],
-    output: png=report("figures/fig03.png", caption="../report/captions/fig03.rst", category="Paper figures"), csv="figures/fig03.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig03.tsv"
-    log: "results/logs/fig03.log",
-    script: "../scripts/run_task.py"
+def paper_outputs(name):
+    """A paper figure's PNG (in the report) and CSV, or a table's CSV."""
+    if name in PAPER_TABLES:
+        return dict(csv=f"figures/{name}.csv")
+    return dict(png=report(f"figures/{name}.png", caption=f"../report/captions/{name}.rst", category="Paper figures"),
+                csv=f"figures/{name}.csv")
 
 
-rule fig04:
-    input: **task("figures.fig04"), curves="results/nstar/curves.csv", fig4="results/geometry/double_ogive_fig4.json",
-    output: png=report("figures/fig04.png", caption="../report/captions/fig04.rst", category="Paper figures"), csv="figures/fig04.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig04.tsv"
-    log: "results/logs/fig04.log",
-    script: "../scripts/run_task.py"
+def paper_params(name):
+    """A paper figure's dpi and PAPER_PARAMS; a table has none."""
+    return {} if name in PAPER_TABLES else dict(dpi=config["figures"]["dpi"], **PAPER_PARAMS.get(name, {}))
 
 
-rule fig05:
-    input: **task("figures.fig05"), curves="results/nstar/curves.csv",
-    output: png=report("figures/fig05.png", caption="../report/captions/fig05.rst", category="Paper figures"), csv="figures/fig05.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig05.tsv"
-    log: "results/logs/fig05.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig06:
-    input: **task("figures.fig06"), do1="results/geometry/double_ogive_table4.json",
-    output: png=report("figures/fig06.png", caption="../report/captions/fig06.rst", category="Paper figures"), csv="figures/fig06.csv",
-    params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig06.tsv"
-    log: "results/logs/fig06.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig07:
-    input: **task("figures.fig07"), noses="results/nstar/noses.csv",
-    output: png=report("figures/fig07.png", caption="../report/captions/fig07.rst", category="Paper figures"), csv="figures/fig07.csv",
-    params: dpi=config["figures"]["dpi"], points=config["figures"]["points_per_segment"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig07.tsv"
-    log: "results/logs/fig07.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig08:
-    input: **task("figures.fig08"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", diameter="results/geometry/diameter_450kg.json",
-    output: png=report("figures/fig08.png", caption="../report/captions/fig08.rst", category="Paper figures"), csv="figures/fig08.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig08.tsv"
-    log: "results/logs/fig08.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig09:
-    input: **task("figures.fig09"), histories="results/scenes/sec22_450kg_histories.csv", dop="results/scenes/sec22_450kg.csv", diameter="results/geometry/diameter_450kg.json", reference=config["reference"],
-    output: png=report("figures/fig09.png", caption="../report/captions/fig09.rst", category="Paper figures"), csv="figures/fig09.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig09.tsv"
-    log: "results/logs/fig09.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig10:
-    input: **task("figures.fig10"), paths="results/hjc/eos_paths.csv", reference=config["reference"],
-    output: png=report("figures/fig10.png", caption="../report/captions/fig10.rst", category="Paper figures"), csv="figures/fig10.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig10.tsv"
-    log: "results/logs/fig10.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig12:
-    input: **task("figures.fig12"), histories="results/scenes/cavity/do1_histories.csv", reference=config["reference"],
-    output: png=report("figures/fig12.png", caption="../report/captions/fig12.rst", category="Paper figures"), csv="figures/fig12.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig12.tsv"
-    log: "results/logs/fig12.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig14:
-    input: **task("figures.fig14"), histories="results/scenes/cavity/table3_histories.csv", reference=config["reference"],
-    output: png=report("figures/fig14.png", caption="../report/captions/fig14.rst", category="Paper figures"), csv="figures/fig14.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig14.tsv"
-    log: "results/logs/fig14.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig15:
-    input: **task("figures.fig15"), dop="results/scenes/fig15.csv", cavity="results/scenes/cavity/fig15.csv", reference=config["reference"],
-    output: png=report("figures/fig15.png", caption="../report/captions/fig15.rst", category="Paper figures"), csv="figures/fig15.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig15.tsv"
-    log: "results/logs/fig15.log",
-    script: "../scripts/run_task.py"
-
-
-rule fig16:
-    input: **task("figures.fig16"), curves="results/nstar/curves.csv", noses="results/nstar/noses.csv", reference=config["reference"],
-    output: png=report("figures/fig16.png", caption="../report/captions/fig16.rst", category="Paper figures"), csv="figures/fig16.csv",
-    params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fig16.tsv"
-    log: "results/logs/fig16.log",
-    script: "../scripts/run_task.py"
-
-
-rule table1:
-    input: **task("figures.table1"), reference=config["reference"],
-    output: csv="figures/table1.csv",
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/table1.tsv"
-    log: "results/logs/table1.log",
-    script: "../scripts/run_task.py"
-
-
-rule table2:
-    input: **task("figures.table2"), reference=config["reference"],
-    output: csv="figures/table2.csv",
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/table2.tsv"
-    log: "results/logs/table2.log",
-    script: "../scripts/run_task.py"
-
-
-rule table3:
-    input: **task("figures.table3"), analytic="results/scenes/table3.csv", stated="results/scenes/table3_stated.csv", fit="results/calibration/table3_calc.json", cavity="results/scenes/cavity/table3.csv", reference=config["reference"],
-    output: csv="figures/table3.csv",
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/table3.tsv"
-    log: "results/logs/table3.log",
-    script: "../scripts/run_task.py"
-
-
-rule table4:
-    input: **task("figures.table4"), noses="results/nstar/noses.csv", reference=config["reference"],
-    output: csv="figures/table4.csv",
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/table4.tsv"
-    log: "results/logs/table4.log",
-    script: "../scripts/run_task.py"
-
-
-rule validation:
-    input: **task("figures.validation"), predictions="results/validation/predictions.csv",
-    output: png=report("figures/validation.png", caption="../report/captions/validation.rst", category="Validation"), csv="figures/validation.csv",
-    params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/validation.tsv"
-    log: "results/logs/validation.log",
-    script: "../scripts/run_task.py"
-
-
-rule cavity_sigma_n:
-    input: **task("figures.cavity_sigma_n"), sigma="results/cavity/sigma_n.csv", cal_do1="results/calibration/do1.json",
-           shots="results/scenes/cavity/table3.csv",
-    output: png=report("figures/cavity_sigma_n.png", caption="../report/captions/cavity_sigma_n.rst", category="Cavity level"), csv="figures/cavity_sigma_n.csv", static="figures/static_resistance.csv",
-    params: dpi=config["figures"]["dpi"], rho=config["cavity_plot"]["rho"], fc=config["cavity_plot"]["fc"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/cavity_sigma_n.tsv"
-    log: "results/logs/cavity_sigma_n.log",
-    script: "../scripts/run_task.py"
-
-
-rule cavity_table3_sensitivity:
-    input: **task("figures.cavity_table3_sensitivity"), csv="results/cavity/calibration_variants.csv",
-    output: png=report("figures/cavity_table3_sensitivity.png", caption="../report/captions/cavity_table3_sensitivity.rst", category="Cavity level"), csv="figures/cavity_table3_sensitivity.csv",
-    params: dpi=config["figures"]["dpi"], goal_pct=STUDIES["cavity_calibration_variants"]["goal_pct"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/cavity_table3_sensitivity.tsv"
-    log: "results/logs/cavity_table3_sensitivity.log",
-    script: "../scripts/run_task.py"
+for name, inputs in {**PAPER_FIGURES, **PAPER_TABLES}.items():
+    rule:
+        name: name
+        input: **task(f"figures.{name}"), **inputs,
+        output: **paper_outputs(name),
+        params: **paper_params(name),
+        threads: 1
+        resources: mem_mb=1000, runtime=5
+        benchmark: f"results/benchmarks/{name}.tsv"
+        log: f"results/logs/{name}.log",
+        script: "../scripts/run_task.py"
 
 
 rule accuracy_trajectory:
@@ -230,27 +76,46 @@ rule accuracy_trajectory:
     script: "../scripts/run_task.py"
 
 
-rule accuracy_cavity:
+use rule accuracy_trajectory as validation with:
+    input: **task("figures.validation"), predictions="results/validation/predictions.csv",
+    output: png=report("figures/validation.png", caption="../report/captions/validation.rst", category="Validation"), csv="figures/validation.csv",
+    params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"],
+    benchmark: "results/benchmarks/validation.tsv"
+    log: "results/logs/validation.log",
+
+
+use rule accuracy_trajectory as cavity_sigma_n with:
+    input: **task("figures.cavity_sigma_n"), sigma="results/cavity/sigma_n.csv", cal_do1="results/calibration/do1.json",
+           shots="results/scenes/cavity/table3.csv",
+    output: png=report("figures/cavity_sigma_n.png", caption="../report/captions/cavity_sigma_n.rst", category="Cavity level"), csv="figures/cavity_sigma_n.csv", static="figures/static_resistance.csv",
+    params: dpi=config["figures"]["dpi"], rho=config["cavity_plot"]["rho"], fc=config["cavity_plot"]["fc"],
+    benchmark: "results/benchmarks/cavity_sigma_n.tsv"
+    log: "results/logs/cavity_sigma_n.log",
+
+
+use rule accuracy_trajectory as cavity_table3_sensitivity with:
+    input: **task("figures.cavity_table3_sensitivity"), csv="results/cavity/calibration_variants.csv",
+    output: png=report("figures/cavity_table3_sensitivity.png", caption="../report/captions/cavity_table3_sensitivity.rst", category="Cavity level"), csv="figures/cavity_table3_sensitivity.csv",
+    params: dpi=config["figures"]["dpi"], goal_pct=STUDIES["cavity_calibration_variants"]["goal_pct"],
+    benchmark: "results/benchmarks/cavity_table3_sensitivity.tsv"
+    log: "results/logs/cavity_table3_sensitivity.log",
+
+
+use rule accuracy_trajectory as accuracy_cavity with:
     input: **task("figures.accuracy_cavity"), csv="results/studies/cavity_solver.csv",
     output: png=report("figures/timing/accuracy_cavity.png", caption="../report/captions/accuracy_cavity.rst", category="Timing (machine-dependent)"), csv="figures/accuracy_cavity.csv", timing="figures/timing/accuracy_cavity.csv",
     params: dpi=config["figures"]["dpi"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/accuracy_cavity.tsv"
     log: "results/logs/accuracy_cavity.log",
-    script: "../scripts/run_task.py"
 
 
-rule nose_contrasts:
+use rule accuracy_trajectory as nose_contrasts with:
     input: **task("figures.nose_contrasts"), csv="results/contrasts/nose_contrasts.csv", reference=config["reference"],
     output: png=report("figures/nose_contrasts.png", caption="../report/captions/nose_contrasts.rst", category="Conclusions"), csv="figures/nose_contrasts.csv", table="figures/nose_contrasts_table.csv",
     params: dpi=config["figures"]["dpi"],
             band=study_input("figures/fe/contrast_band.csv"), limit=study_input("figures/fe/contrast_extrapolation.csv"),
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/nose_contrasts.tsv"
     log: "results/logs/nose_contrasts.log",
-    script: "../scripts/run_task.py"
 
 
 # Every level on the development shots (users' shots at every level, levels.py): nothing fitted to them; the
@@ -259,7 +124,7 @@ rule validation_level:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
            cal_cavity="results/calibration/cavity_do1.json",
     output: csv="results/validation/{level}.csv",
-    params: cfg=cfg_slice("cavity", "validation"), law=config["validation"]["strength_law"], level=lambda w: w.level,
+    params: cfg=cfg_slice("concrete", "cavity", "validation"), law=config["validation"]["strength_law"], level=lambda w: w.level,
     wildcard_constraints: level="trajectory|cavity",
     threads: 2
     resources: mem_mb=2000, runtime=20
@@ -272,7 +137,7 @@ rule validation_fe:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
            cal_fe=lambda w: fe_calibration(w.profile),
     output: csv="results/validation/fe_{profile}.csv",
-    params: cfg=lambda w: cfg_slice("cavity", "validation", fe=fe_cfg(w.profile)), law=config["validation"]["strength_law"],
+    params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)), law=config["validation"]["strength_law"],
             profile=lambda w: w.profile,
     threads: 2
     resources: mem_mb=2000, runtime=60
@@ -281,7 +146,7 @@ rule validation_fe:
     script: "../scripts/run_task.py"
 
 
-rule validation_levels:
+use rule accuracy_trajectory as validation_levels with:
     input: **task("figures.validation_levels"), analytic="results/validation/predictions.csv",
            trajectory="results/validation/trajectory.csv", cavity="results/validation/cavity.csv",
            fe="results/validation/fe_{profile}.csv",
@@ -289,17 +154,14 @@ rule validation_levels:
             summary="figures/fe/{profile}/validation_levels_summary.csv",
             timing="figures/timing/validation_levels_{profile}.csv",
     params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"], profile=lambda w: w.profile,
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/validation_levels_{profile}.tsv"
     log: "results/logs/validation_levels_{profile}.log",
-    script: "../scripts/run_task.py"
 
 
 rule hjc_scaling:
     input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
     output: csv="figures/hjc_scaling.csv",
-    params: cfg=cfg_slice("cavity"),
+    params: cfg=cfg_slice("concrete"),
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/hjc_scaling.tsv"
@@ -322,7 +184,7 @@ rule accuracy_cost:
            fe_benchmarks=[f"results/benchmarks/fe_shot_{p}_table3_{nose}_{v}.tsv" for p in ACCURACY_PROFILES
                           for nose, v in FE_SCENES["table3"]],
     output: csv="figures/accuracy_cost.csv", timing="figures/timing/accuracy_cost.csv",
-    params: cfg=cfg_slice("cavity"), fe_profiles=ACCURACY_PROFILES,
+    params: cfg=cfg_slice("concrete", "cavity"), fe_profiles=ACCURACY_PROFILES,
     threads: 2
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/accuracy_cost.tsv"
@@ -330,7 +192,7 @@ rule accuracy_cost:
     script: "../scripts/run_task.py"
 
 
-rule accuracy_prediction:
+use rule accuracy_trajectory as accuracy_prediction with:
     input: **task("tasks.accuracy"), timing="figures/timing/accuracy_cost.csv", table3="figures/table3.csv",
            contrasts="figures/nose_contrasts_table.csv",
            fe_tables=expand("figures/fe/{profile}/table3.csv", profile=ACCURACY_PROFILES),
@@ -339,11 +201,8 @@ rule accuracy_prediction:
     output: csv="figures/accuracy_prediction.csv",
             png=report("figures/timing/accuracy_cost.png", caption="../report/captions/accuracy_cost.rst", category="Timing (machine-dependent)"),
     params: dpi=config["figures"]["dpi"], fe_profiles=ACCURACY_PROFILES, validation_profiles=["full", "ci"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/accuracy_prediction.tsv"
     log: "results/logs/accuracy_prediction.log",
-    script: "../scripts/run_task.py"
 
 
 # The sweep target: `snakemake -c2 sweep` (not part of `all`).
@@ -355,7 +214,7 @@ rule sweep_level:
     input: **task("tasks.levels"), reference=config["reference"],
            cal_cavity="results/calibration/cavity_do1.json", cal_fe=fe_calibration(SWEEP.get("fe_profile", "ci")),
     output: csv="results/sweep/{level}_n{n}.csv",
-    params: cfg=cfg_slice("cavity", "validation", "fe", "sweep"), level=lambda w: w.level, n=lambda w: w.n,
+    params: cfg=cfg_slice("concrete", "cavity", "validation", "fe", "sweep"), level=lambda w: w.level, n=lambda w: w.n,
     wildcard_constraints: level="analytic|trajectory|cavity|fe", n=r"[0-9]+",
     threads: 2
     resources: mem_mb=2000, runtime=60
@@ -364,18 +223,15 @@ rule sweep_level:
     script: "../scripts/run_task.py"
 
 
-rule sweep_figures:
+use rule accuracy_trajectory as sweep_figures with:
     input: **task("figures.sweep"), csvs=[f"results/sweep/{lv}_n{n}.csv" for lv, n in SWEEP_RUNS],
            benchmarks=[f"results/benchmarks/sweep_level_{lv}_n{n}.tsv" for lv, n in SWEEP_RUNS],
     output: png=report("figures/sweep/depth.png", caption="../report/captions/sweep_depth.rst", category="Users' shots"), csv="figures/sweep/depth.csv", cost_png=report("figures/timing/sweep_cost.png", caption="../report/captions/sweep_cost.rst", category="Timing (machine-dependent)"),
             cost_csv="figures/timing/sweep_cost.csv",
     params: dpi=config["figures"]["dpi"], levels=[lv for lv, _ in SWEEP_RUNS], sizes=[n for _, n in SWEEP_RUNS],
             law=config["validation"]["strength_law"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/sweep_figures.tsv"
     log: "results/logs/sweep_figures.log",
-    script: "../scripts/run_task.py"
 
 
 rule sweep:

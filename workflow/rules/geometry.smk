@@ -12,15 +12,12 @@ rule infer_fig4_design:
     script: "../scripts/run_task.py"
 
 
-rule infer_table4_do1:
+use rule infer_fig4_design as infer_table4_do1 with:
     input: **task("tasks.geometry"), reference=config["reference"],
     output: json="results/geometry/double_ogive_table4.json", family="results/geometry/double_ogive_table4_family.csv",
     params: cfg=config["table4_do1"], projectile=config["projectile"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/infer_table4_do1.tsv"
     log: "results/logs/infer_table4_do1.log",
-    script: "../scripts/run_task.py"
 
 
 rule geometry:

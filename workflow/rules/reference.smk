@@ -29,24 +29,18 @@ rule diff:
     script: "../scripts/run_task.py"
 
 
-rule reproduce_check:
+use rule diff as reproduce_check with:
     input: **task("tasks.reference"), outputs=list(config["check"]["outputs"]), diff="figures/diff.csv",
     output: report="results/check/reproduce_check.txt",
     params: check=config["check"],
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/reproduce_check.tsv"
     log: "results/logs/reproduce_check.log",
-    script: "../scripts/run_task.py"
 
 
 # The studies' reproduction check (`make check-studies`): their committed outputs against a rebuild.
-rule reproduce_check_studies:
+use rule diff as reproduce_check_studies with:
     input: **task("tasks.reference"), outputs=list(CHECK_STUDIES),
     output: report="results/check/reproduce_check_studies.txt",
     params: check={**config["check"], "outputs": CHECK_STUDIES},
-    threads: 1
-    resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/reproduce_check_studies.tsv"
     log: "results/logs/reproduce_check_studies.log",
-    script: "../scripts/run_task.py"

@@ -1,4 +1,6 @@
 """Finite-element level: 2-D axisymmetric explicit Lagrangian solver with HJC, erosion and a rigid nose."""
-from .materials import MATERIALS, Elastic, VonMises
+from .constitutive import MATERIALS, Elastic, VonMises
 from .mesh import Grid, MeshSpec, body_outline, build, graded
-from .solver import Controls, Model, Projectile, Result, Unstable, run
+from .contact import Projectile
+from .model import Controls, Model
+from .solver import Result, Unstable, run

@@ -18,10 +18,13 @@ from numba import njit
 
 
 @njit(cache=True)
-def _march(u, v, m, h, E, rho, c, A, q1, q2, f, t_end, wall, dashpot):
-    """Advance displacements u and half-step velocities v to t_end. wall: the first node stays at u >= its
-    start (a rigid face behind it); dashpot 0 none, 1 implicit, 2 centred on the last node. Returns the
-    time the wall last pushed and the impulse it gave (N s, towards +x)."""
+def _march(u, v, m, bar, controls, t_end, wall, dashpot):
+    """Advance displacements u and half-step velocities v (nodal masses m) of the bar (cell length h, modulus E,
+    density rho, wave speed c, area A) to t_end, with the viscosity and step controls (q1, q2, Courant factor f).
+    wall: the first node stays at u >= its start (a rigid face behind it); dashpot 0 none, 1 implicit, 2 centred on
+    the last node. Returns the time the wall last pushed and the impulse it gave (N s, towards +x)."""
+    h, E, rho, c, A = bar
+    q1, q2, f = controls
     n = u.size - 1
     t, dt_old, last_push, impulse = 0.0, 0.0, -1.0, 0.0
     d = np.zeros(n)
@@ -81,7 +84,7 @@ def bar_on_wall(n, length, v, E, rho, t_end, q1=1.5, q2=0.06, f=0.9, area=1.0):
     h = length / n
     u, vel = np.zeros(n + 1), np.full(n + 1, -v)
     m = masses(n, h, rho, area)
-    end, _ = _march(u, vel, m, h, E, rho, math.sqrt(E / rho), area, q1, q2, f, t_end, True, 0)
+    end, _ = _march(u, vel, m, (h, E, rho, math.sqrt(E / rho), area), (q1, q2, f), t_end, True, 0)
     return float(np.sum(m * vel) / np.sum(m)), end
 
 
@@ -99,7 +102,7 @@ def dashpot_reflection(per_pulse, courant=0.9, centred=False):
         s = np.clip((x - x1) / w, 0.0, 1.0)
         vel = amp * np.sin(np.pi * s) ** 2
         u = amp * 0.5 * w * (1.0 - (s - np.sin(2.0 * np.pi * s) / (2.0 * np.pi)))   # the right-going wave's u
-        _march(u, vel, masses(nodes, h, rho, 1.0), h, E, rho, 1.0, 1.0, 0.0, 0.0, courant, t_end, False, dashpot)
+        _march(u, vel, masses(nodes, h, rho, 1.0), (h, E, rho, 1.0, 1.0), (0.0, 0.0, courant), t_end, False, dashpot)
         return vel
 
     return float(np.abs(run(n, 2 if centred else 1) - run(2 * n, 0)[:n + 1]).max()) / amp

@@ -1,8 +1,8 @@
 """An ideal gas on the FE solver's kernels, for Noh's problem (verification of the shock viscosity).
 
-The solver's materials have no energy-dependent pressure (``fe.materials``: elastic, von Mises, HJC), so this
-module steps a ``Model`` itself with the solver's own kernels: ``kernels.node_pass`` (velocities from the element
-forces, fixities), ``kernels.move`` and ``kernels.element_pass``, the last with the shear modulus at 0 and a bulk
+The solver's materials have no energy-dependent pressure (``fe.constitutive``: elastic, von Mises, HJC), so this
+module steps a ``Model`` itself with the solver's own kernels: ``nodes.node_pass`` (velocities from the element
+forces, fixities), ``nodes.move`` and ``element_pass.element_pass``, the last with the shear modulus at 0 and a bulk
 modulus negligible next to the flow's pressures (by default; 0 itself would make the pass's stable step
 infinite, which it reports as non-finite). The element pass so contributes the geometry and the bulk viscosity
 q: its formula, its forces and its work booked in E[IE]. This module adds the gas pressure p = (gamma - 1) e/V of
@@ -10,7 +10,7 @@ each element's internal energy e (J): its forces, those the element pass forms f
 b-matrix and hoop terms), and its work, time-centred, e' = e - (p + p')/2 (V' - V), solved for p' in closed
 form. The step is this module's: the kernel's length and viscosity terms with the gas sound speed
 sqrt(gamma p/rho). With the negligible modulus the kernel's own sound speed is 0, so its linear viscosity term
-and its hourglass control are off. What ``fe.materials`` would need to hold the gas itself: a kind whose update
+and its hourglass control are off. What ``fe.constitutive`` would need to hold the gas itself: a kind whose update
 sets p from E[IE] by the centred update above and whose wave speed is sqrt(gamma p/rho).
 """
 from __future__ import annotations
@@ -19,8 +19,9 @@ import math
 
 import numpy as np
 
-from . import kernels as K
-from .solver import Model
+from . import state as fields
+from .model import Model
+from .nodes import move, node_pass
 
 
 def _geometry(m: Model):
@@ -39,7 +40,7 @@ def _geometry(m: Model):
     sides = np.stack([(r2 - r1) ** 2 + (z2 - z1) ** 2, (r3 - r2) ** 2 + (z3 - z2) ** 2,
                       (r4 - r3) ** 2 + (z4 - z3) ** 2, (r1 - r4) ** 2 + (z1 - z4) ** 2]).max(axis=0)
     V = 2.0 * math.pi * W
-    return V, dW, bz, 0.5 * A2 / np.sqrt(sides), m.E[K.MASS] / V
+    return V, dW, bz, 0.5 * A2 / np.sqrt(sides), m.E[fields.MASS] / V
 
 
 def volumes_and_density(m: Model):
@@ -70,43 +71,40 @@ def run_ideal_gas(m: Model, gamma, end_time, modulus=0.0, dt_factor=0.5, outputs
     that the flow sees the gas pressure and q only. Returns (audit, p): the audit of time, kinetic and internal
     energy at ``outputs`` evenly spaced times and the end, and the element pressures at the end."""
     m.q[1] = 0.0
-    scale = float(m.q[0] * np.max(m.vr ** 2 + m.vz ** 2) + (gamma - 1.0) * m.E[K.IE].sum() / m.E[K.V0].sum())
+    scale = float(m.q[0] * np.max(m.vr ** 2 + m.vz ** 2) + (gamma - 1.0) * m.E[fields.IE].sum() / m.E[fields.V0].sum())
     m.q[2] = max(modulus, 1e-12 * scale)   # a zero modulus would make the pass's stable step infinite (non-finite)
-    m.ctl[K.C_DTMIN] = 0.0
-    nn = m.r.size
-    vr0, vz0 = np.zeros(nn), np.zeros(nn)
+    m.ctl[fields.C_DTMIN] = 0.0
     V, dW, bz, lc, rho = _geometry(m)
-    p = (gamma - 1.0) * m.E[K.IE] / V
+    p = (gamma - 1.0) * m.E[fields.IE] / V
     t, dt_old, audit, tv = 0.0, None, [], _dilatation(m, V)
     marks = list(np.linspace(0.0, end_time, outputs + 1)[1:]) if outputs else []
-    q1, q2 = m.ctl[K.C_Q1], m.ctl[K.C_Q2]
+    q1, q2 = m.ctl[fields.C_Q1], m.ctl[fields.C_Q2]
 
     def record():
-        audit.append(dict(t=t, kinetic=m.kinetic_energy(), internal=float(m.E[K.IE].sum())))
+        audit.append(dict(t=t, kinetic=m.kinetic_energy(), internal=float(m.E[fields.IE].sum())))
 
     record()
     _pass(m, 0.0)
-    _add_pressure_forces(m, p - m.E[K.P], V, dW, bz)
+    _add_pressure_forces(m, p - m.E[fields.P], V, dW, bz)
     while t < end_time - 1e-15:
         c = np.sqrt(gamma * np.maximum(p, 0.0) / rho)
         Q = q2 * c + q1 * q1 * lc * np.maximum(-tv, 0.0)
         dt = dt_factor * float(np.min(lc / (Q + np.sqrt(Q * Q + c * c) + 1e-300)))
         dt = min(dt, end_time - t, 1.2 * dt_old if dt_old else dt)
         dtv = dt if dt_old is None else 0.5 * (dt + dt_old)
-        K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, m.mass, m.vr, m.vz, vr0, vz0, m.nstate, dtv, m.fix, m.dash,
-                    m.rowdash, 0.0, 0.0, m.rowbnd)
-        K.move(m.r, m.z, m.vr, m.vz, m.nstate, dt, 0, nn)
-        e_old, pk_old = m.E[K.IE].copy(), m.E[K.P].copy()
+        node_pass(m.span(), m.F, m.alive, m.mass, m.nstate, m.fix, m.dash, m.rowdash, (0.0, 0.0), dtv, m.V, m.rows.f)
+        move(m.span(), m.X, m.V, m.nstate, dt)
+        e_old, pk_old = m.E[fields.IE].copy(), m.E[fields.P].copy()
         _pass(m, dt)
-        share = 0.5 * (pk_old + m.E[K.P]) + m.E[K.QV]
-        heat = (m.E[K.IE] - e_old) * m.E[K.QV] / np.where(share != 0.0, share, 1.0)
+        share = 0.5 * (pk_old + m.E[fields.P]) + m.E[fields.QV]
+        heat = (m.E[fields.IE] - e_old) * m.E[fields.QV] / np.where(share != 0.0, share, 1.0)
         V_new, dW, bz, lc, rho = _geometry(m)
         dV = V_new - V
         tv = np.log(V_new / V) / dt
         e = (e_old + heat - 0.5 * p * dV) / (1.0 + 0.5 * (gamma - 1.0) * dV / V_new)
-        m.E[K.IE] = e
+        m.E[fields.IE] = e
         p, V = (gamma - 1.0) * e / V_new, V_new
-        _add_pressure_forces(m, p - m.E[K.P], V, dW, bz)
+        _add_pressure_forces(m, p - m.E[fields.P], V, dW, bz)
         t += dt
         dt_old = dt
         m.t = t
@@ -131,8 +129,6 @@ def _dilatation(m: Model, V):
 
 def _pass(m: Model, dt):
     """The solver's element pass (geometry, viscosity and its work, forces) over every row."""
-    m.ctl[K.C_DT] = dt
-    K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
-                   m.rowhg, m.rowero, m.rowfail)
-    if (m.rowfail[:m.nz] >= 0).any() or (m.alive != 1).any():
+    m.element_pass(dt)
+    if (m.rows.fail >= 0).any() or (m.alive != fields.LIVE).any():
         raise RuntimeError(f"the gas mesh failed at t = {m.t:.4g} (an inverted element)")

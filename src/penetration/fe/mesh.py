@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
-from .kernels import VECTOR_WIDTH
+from .state import VECTOR_WIDTH
 
 
 @dataclass(frozen=True)

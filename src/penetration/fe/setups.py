@@ -8,11 +8,14 @@ import math
 import numpy as np
 
 from ..geometry import Flat
-from . import closed_forms as cf, kernels as K
+from . import closed_forms as cf, state as fields
 from .gas import run_ideal_gas, volumes_and_density
-from .materials import Elastic, VonMises
+from .constitutive import Elastic, VonMises
+from .contact import Projectile
 from .mesh import Grid, body_outline
-from .solver import Controls, Model, Projectile, run
+from .model import Controls, Model
+from .nodes import node_pass
+from .solver import run
 
 
 def elastic(rho, K, G):
@@ -34,18 +37,16 @@ def distorted_grid(n=5, amp=0.06, seed=3):
 
 def element_pass(m, dt):
     """One element pass of the solver over every row with step dt (stresses, energy, forces)."""
-    m.ctl[K.C_DT] = dt
-    K.element_pass(m.nr, m.nz, 0, m.nz, m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F, m.kind, m.q, m.ctl, m.rowdt,
-                   m.rowhg, m.rowero, m.rowfail)
+    m.element_pass(dt)
 
 
 def nodal_forces(m):
     """Nodal force sums (r, z) of the element forces, by the solver's own gather (its node pass with unit masses,
     a unit step and no fixity)."""
-    vr, vz = np.zeros_like(m.vr), np.zeros_like(m.vz)
-    K.node_pass(m.nr, m.nz, 0, m.nz, m.F, m.alive, np.ones_like(m.mass), vr, vz, np.zeros_like(vr), np.zeros_like(vz),
-                m.nstate, 1.0, np.zeros_like(m.fix), m.dash, m.rowdash, 0.0, 0.0, m.rowbnd)
-    return -vr, -vz
+    V = np.zeros_like(m.V)
+    node_pass(m.span(), m.F, m.alive, np.ones_like(m.mass), m.nstate, np.zeros_like(m.fix), m.dash, m.rowdash, (0.0, 0.0),
+              1.0, V, m.rows.f.copy())
+    return -V[fields.VR], -V[fields.VZ]
 
 
 def element_path(material, phases, size=0.01, D0=0.0, every_step=True):
@@ -54,15 +55,15 @@ def element_path(material, phases, size=0.01, D0=0.0, every_step=True):
     v_z = b z from the phase's start). Returns the history at every step (or 50 per phase): time, the
     stretches lambda_r, lambda_z, pressure, equivalent stress, damage."""
     g = Grid.tensor([0.0, size], [0.0, size])
-    m = Model(g, material, Controls(end_time=1.0, output_interval=1.0, progress=False, max_energy_error=math.inf))
-    m.E[K.DMG] = D0
+    m = Model(g, material, Controls(end_time=1.0, output_interval=1.0, max_energy_error=math.inf))
+    m.E[fields.DMG] = D0
     out = {key: [] for key in ("t", "lr", "lz", "p", "seq", "D")}
 
     def record(model, t):
         E = model.E[:, 0]
-        for key, value in (("t", t), ("lr", model.r[1] / size), ("lz", (model.z[2] - model.z[0]) / size), ("p", E[K.P]),
-                           ("seq", math.sqrt(1.5 * (E[K.SRR] ** 2 + E[K.SZZ] ** 2 + E[K.STT] ** 2) + 3 * E[K.SRZ] ** 2)),
-                           ("D", E[K.DMG])):
+        for key, value in (("t", t), ("lr", model.r[1] / size), ("lz", (model.z[2] - model.z[0]) / size), ("p", E[fields.P]),
+                           ("seq", math.sqrt(1.5 * (E[fields.SRR] ** 2 + E[fields.SZZ] ** 2 + E[fields.STT] ** 2) + 3 * E[fields.SRZ] ** 2)),
+                           ("D", E[fields.DMG])):
             out[key].append(value)
 
     record(m, 0.0)
@@ -79,7 +80,7 @@ def bar_on_face(nz, v, q=True):
     projectile at rest, for 60 us: (model, result)."""
     g = Grid.tensor(np.linspace(0, 0.005, nz // 20 + 1), np.linspace(0.0, 0.05, nz + 1) + 1e-9)
     viscosity = {} if q else dict(q1=0.0, q2=0.0)
-    m = Model(g, Elastic(7850, 210e9, 0.0), Controls(end_time=60e-6, output_interval=1e-6, progress=False, **viscosity))
+    m = Model(g, Elastic(7850, 210e9, 0.0), Controls(end_time=60e-6, output_interval=1e-6, **viscosity))
     m.vz[:] = -v
     zeta, rho = body_outline(Flat(0.02), 0.05)
     return m, run(m, Projectile(zeta, rho, 1e9, 0.0, 0.0))
@@ -91,11 +92,11 @@ def taylor_run(across):
     R, L = 3.2e-3, 32.4e-3
     g = Grid.tensor(np.linspace(0, R, across + 1), np.linspace(0, L, round(10.1 * across) + 1))
     m = Model(g, VonMises(8930.0, 117e9, 0.35, 400e6, 100e6),
-              Controls(bottom="roller", end_time=80e-6, output_interval=4e-6, progress=False))
+              Controls(bottom="roller", end_time=80e-6, output_interval=4e-6))
     m.vz[:] = 227.0
     res = run(m)
     face = g.nz * (g.nr + 1) + np.arange(g.nr + 1)
-    share = float(m.E[K.V0, m.E[K.EPSP] >= 0.2].sum() / m.E[K.V0].sum())
+    share = float(m.E[fields.V0, m.E[fields.EPSP] >= 0.2].sum() / m.E[fields.V0].sum())
     return m, res, float(m.r[face].max()), float(m.z[face].max() - m.z[: g.nr + 1].min()), share
 
 
@@ -126,15 +127,14 @@ def pulse_column(length, h, x1, width, bottom, t_end, amplitude=1.0):
     Kb, G, rho = 16e9, 14.86e9, 2440.0
     c = math.sqrt((Kb + 4 * G / 3) / rho)
     g = Grid.tensor(np.linspace(0, 0.025, 6), np.linspace(0, length, round(length / h) + 1))
-    m = Model(g, elastic(rho, Kb, G), Controls(lateral="roller", bottom=bottom, end_time=t_end, output_interval=t_end,
-                                                progress=False))
+    m = Model(g, elastic(rho, Kb, G), Controls(lateral="roller", bottom=bottom, end_time=t_end, output_interval=t_end))
     s = np.clip((m.z - x1) / width, 0.0, 1.0)
     z0 = m.z.copy()
     m.z += amplitude * width / (2 * c) * (1 - (s - np.sin(2 * np.pi * s) / (2 * np.pi)))
     m.vz[:] = amplitude * np.sin(np.pi * s) ** 2
     n = m.conn
     e = np.log((m.z[n[:, 3]] - m.z[n[:, 0]]) / (z0[n[:, 3]] - z0[n[:, 0]]))
-    m.E[K.SZZ], m.E[K.SRR], m.E[K.STT], m.E[K.P] = 4 * G / 3 * e, -2 * G / 3 * e, -2 * G / 3 * e, -Kb * e
-    m.E[K.IE] = [cf.uniaxial_strain_energy(Kb + 4 * G / 3, V0, x) for V0, x in zip(m.E[K.V0], e)]
+    m.E[fields.SZZ], m.E[fields.SRR], m.E[fields.STT], m.E[fields.P] = 4 * G / 3 * e, -2 * G / 3 * e, -2 * G / 3 * e, -Kb * e
+    m.E[fields.IE] = [cf.uniaxial_strain_energy(Kb + 4 * G / 3, V0, x) for V0, x in zip(m.E[fields.V0], e)]
     run(m)
     return m.vz, c

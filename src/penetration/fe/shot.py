@@ -21,6 +21,8 @@ filtered by a zero-phase fourth-order Butterworth low-pass at ``cutoff``
 """
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -29,9 +31,11 @@ import numpy as np
 from scipy.signal import butter, filtfilt
 
 from ..errors import ParameterError
-from . import kernels as K
+from . import state as fields
+from .contact import Projectile
 from .mesh import MeshSpec, body_outline, build
-from .solver import Controls, Model, Projectile, run
+from .model import Controls, Model
+from .solver import LOG, run
 
 G0 = 9.80665
 BLOCK_RADIUS = 3.6 / math.sqrt(math.pi)  # equal cross-section area with the 3.6 m x 3.6 m block
@@ -129,7 +133,7 @@ def nose_pressure(model, projectile, nose, h):
     element of the nose surface, with the surface normal at the same distance behind the tip."""
     rc, zc = model.centroids()
     zeta = projectile.Zt - zc
-    near = (model.alive == 1) & (zeta > -h) & (zeta < nose.length)
+    near = (model.alive == fields.LIVE) & (zeta > -h) & (zeta < nose.length)
     if not near.any():
         return 0.0
     zn = np.clip(zeta[near], 0.0, nose.length)
@@ -142,7 +146,7 @@ def nose_pressure(model, projectile, nose, h):
     beta = nose.angle(zn[keep])
     nr_, nz_ = np.cos(beta), np.sin(beta)
     E = model.E
-    srr, szz, srz = E[K.SRR, e] - E[K.P, e], E[K.SZZ, e] - E[K.P, e], E[K.SRZ, e]
+    srr, szz, srz = E[fields.SRR, e] - E[fields.P, e], E[fields.SZZ, e] - E[fields.P, e], E[fields.SRZ, e]
     return float(np.max(-(srr * nr_ ** 2 + szz * nz_ ** 2 + 2 * srz * nr_ * nz_)))
 
 
@@ -155,7 +159,7 @@ def tunnel_eroded_share(model, radius, depth):
     rc, zc = 0.5 * (r[1:] + r[:-1]), 0.5 * (z[1:] + z[:-1])
     vol = 2 * np.pi * np.outer(np.diff(z), rc * np.diff(r))  # [row j, column i], as the elements are numbered
     inside = (zc[:, None] < depth) & (zc[:, None] > 0) & (rc[None, :] < radius)
-    eroded = np.isin(model.alive.reshape(g.nz, g.nr), (0, 2))
+    eroded = np.isin(model.alive.reshape(g.nz, g.nr), (fields.ERODED, fields.ERODING))
     total = vol[inside].sum()
     return float(vol[inside & eroded].sum() / total) if total > 0 else math.nan
 
@@ -176,6 +180,8 @@ class ShotResult:
     model: Model | None = None
     attempts: int = 1
     tunnel_eroded_share: float = math.nan
+    dt_shares: dict = field(default_factory=dict)   # share of the steps each time-step criterion controlled
+    dt_control: str = ""                             # the last step's criterion and element
 
     def summary(self):
         last = self.audit[-1]
@@ -188,7 +194,30 @@ class ShotResult:
                 "energy_error_max": worst, "energy_error_final": last["energy_error"],
                 "momentum_error_final": last["momentum_error"], "hourglass_over_internal": last["hourglass"] / max(ie, 1e-300),
                 "contact_loss_fraction": last["contact"] / max(last["total"], 1e-300), "attempts": self.attempts,
-                "tunnel_eroded_share": self.tunnel_eroded_share}
+                "tunnel_eroded_share": self.tunnel_eroded_share,
+                **{f"dt_share_{k}": v for k, v in self.dt_shares.items()}, "dt_control": self.dt_control}
+
+
+@contextlib.contextmanager
+def _forwarded(log):
+    """Progress of the solver's logger also to the callable ``log`` (a line at a time) while the block runs."""
+    if log is None:
+        yield
+        return
+
+    class Forward(logging.Handler):
+        def emit(self, record):
+            log(record.getMessage())
+
+    handler = Forward(logging.INFO)
+    level = LOG.level
+    LOG.addHandler(handler)
+    LOG.setLevel(logging.INFO)
+    try:
+        yield
+    finally:
+        LOG.removeHandler(handler)
+        LOG.setLevel(level)
 
 
 def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), target: TargetSpec = TargetSpec(),
@@ -200,28 +229,29 @@ def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), ta
         raise ParameterError("fe shot", "mass", mass, "> 0 (kg)")
     expected = expected_depth if expected_depth is not None else 5.0
     zeta, rho = body_outline(nose, settings.body_length)
-    for attempt in range(1, max_attempts + 1):
-        model = model_for(nose, settings, target, material, expected)
-        proj = Projectile(zeta, rho, mass, 0.0, velocity, friction)
-        pmax = [0.0]
+    with _forwarded(log):
+        for attempt in range(1, max_attempts + 1):
+            model = model_for(nose, settings, target, material, expected)
+            proj = Projectile(zeta, rho, mass, 0.0, velocity, friction)
+            pmax = [0.0]
 
-        def sample(m, t):
-            pmax[0] = max(pmax[0], nose_pressure(m, proj, nose, settings.element_size))
+            def sample(m, t):
+                pmax[0] = max(pmax[0], nose_pressure(m, proj, nose, settings.element_size))
 
-        t0 = time.perf_counter()
-        res = run(model, proj, callback=sample, log=log)
-        wall = time.perf_counter() - t0
-        if res.status == "perforated" and target.kind == "semi_infinite" and target.depth is None and attempt < max_attempts:
-            expected *= 2.0
-            if log:
-                log(f"reached the bottom of a {model.z.max():.2f} m domain: repeating {2:.0f} times deeper")
-            continue
-        break
+            t0 = time.perf_counter()
+            res = run(model, proj, callback=sample)
+            wall = time.perf_counter() - t0
+            if (res.status == "perforated" and target.kind == "semi_infinite" and target.depth is None
+                    and attempt < max_attempts):
+                expected *= 2.0
+                LOG.info("reached the bottom of a %.2f m domain: repeating 2 times deeper", model.z.max())
+                continue
+            break
     h = res.history
     tb, dec = filtered(h["t"], h["contact_force"], mass, settings.bin_width, settings.cutoff)
     out = ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
                      {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
                       "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
                      model.eroded_mass, pmax[0], model if keep_model else None, attempt,
-                     tunnel_eroded_share(model, nose.radius, float(proj.Zt)))
+                     tunnel_eroded_share(model, nose.radius, float(proj.Zt)), res.dt_shares, res.dt_control)
     return out

@@ -1,4 +1,4 @@
-"""Drawing of the FE nose contrasts' regression on the element size (tasks.fe_convergence)."""
+"""Drawing of the FE nose contrasts' regression on the element size (tasks.fe_studies)."""
 from __future__ import annotations
 
 import matplotlib.pyplot as plt

@@ -1,46 +1,20 @@
 """Tasks of the HJC and cavity stages: EOS paths, DO1 calibration, sigma_n tables, cavity-level scenes."""
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 
 import numpy as np
 import pandas as pd
 
-from .. import reference
-from ..cavity import Controls, Mesh
-from ..cavity_level import SigmaTable, calibrate_parameter, cavity_trajectory, material_switches, sigma_table
-from ..hjc import LOCKS, PointState, drive, from_table1
+from .. import concrete, reference
+from ..cavity_level import SigmaTable, calibrate_parameter, cavity_settings, cavity_trajectory, sigma_table
+from ..hjc import LOCKS, PointState, drive
 from ..hjc_effects import MATERIAL_EFFECTS
 from ..io import load_json, read_inference, task, write_csv, write_json
 from ..nstar import nstar
 from ..resistance import nose_surface
-from .common import CAVITY, projectile, scene_from_inputs
-
-CONVENTIONS = ("lock", "tension", "rate_floor")
-
-
-def table1_hjc(refs, **fields):
-    """HJC of the paper's Table 1 (reference values by id), with ``fields`` set on it."""
-    return from_table1(lambda quantity: refs[f"table1.{quantity}"].si, **fields)
-
-
-def cavity_settings(cfg):
-    """Mesh and solver controls of the cavity solver from the ``cavity`` config slice."""
-    return (Mesh(zones=cfg["zones"], cap=cfg["cap"]),
-            Controls(cycle_ratio=cfg["cycle_ratio"], tol=cfg["tol"], cfl=cfg["cfl"],
-                     quasi_static_from=tuple(cfg["quasi_static_from"])))
-
-
-def configured_hjc(refs, cfg, **fields):
-    """Table 1 HJC with the configured conventions; ``fields`` set any other field (e.g. strength_scale)."""
-    return table1_hjc(refs, **{**{k: cfg[k] for k in CONVENTIONS}, **fields})
-
-
-def do1_shot(refs, ids):
-    """Mass, striking velocity and measured depth of the DO1 shot from the reference ids in ``ids``."""
-    return tuple(refs[ids[q]].si for q in ("mass", "velocity", "depth"))
+from .common import CAVITY, calibration_row, do1_shot, projectile, scene_from_inputs
 
 
 def read_sigma_table(path, material="calibrated"):
@@ -62,7 +36,7 @@ def hjc_eos_paths(inputs, outputs, params):
     refs = reference.load_reference(inputs.reference)
     rows = []
     for lock in LOCKS:
-        mat = table1_hjc(refs, lock=lock)
+        mat = concrete.table1(refs, lock=lock)
         virgin = _hydro_path(mat, PointState.new(), params.mu_top, params.steps)
         rows.append(pd.DataFrame({"lock": lock, "path": "loading", "mu": virgin["mu"], "p": virgin["p"]}))
         for mu_max in params.unload_from:
@@ -90,8 +64,8 @@ def calibrate_cavity_do1(inputs, outputs, params):
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
     t0 = time.perf_counter()
-    fit = calibrate_parameter(configured_hjc(refs, cfg), "strength_scale", nose, mass, vs, depth, cfg["velocities"],
-                              nose.radius, tuple(cfg["effects"]), 0.0, mesh, controls)
+    fit = calibrate_parameter(concrete.configured(refs, params.hjc), "strength_scale", nose, mass, vs, depth,
+                              cfg["velocities"], nose.radius, tuple(cfg["effects"]), 0.0, mesh, controls)
     write_json({"calibration": "cavity_do1", "fitted_quantity": "HJC strength_scale: factor on the whole strength "
                 "surface, a lumped factor for whatever makes the target weaker than Table 1's laboratory set in "
                 "this model (not an in-situ strength; the counterpart of the paper's calibrated erosion strain fs: "
@@ -108,10 +82,9 @@ def cavity_table(inputs, outputs, params):
     rows = []
     for label, s in (("calibrated", scale), ("table1", 1.0)):
         t0 = time.perf_counter()
-        table, results = sigma_table(configured_hjc(refs, cfg, strength_scale=s), cfg["velocities"],
-                                     projectile(refs, params.projectile)[1], mesh, controls)
+        mat = concrete.configured(refs, params.hjc, strength_scale=s)
+        table, results = sigma_table(mat, cfg["velocities"], projectile(refs, params.projectile)[1], mesh, controls)
         cost = time.perf_counter() - t0
-        mat = configured_hjc(refs, cfg, strength_scale=s)
         # the largest hoop stress (tension positive) in the converged field, in units of the tensile strength T
         hoop = lambda r: float(np.max(-r.profile["p"] - 0.5 * r.profile["s_r"])) / mat.T
         quasi = results[-2:]  # the rate-free runs behind the quasi-static v = 0 node
@@ -134,10 +107,10 @@ def scene_cavity(inputs, outputs, params):
     strength scale.
     """
     sc = scene_from_inputs(inputs, CAVITY)
-    switches = material_switches(sc.effects, sc.material, params.cfg)
+    switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
     if switches:
         refs, cfg, mesh, controls, scale = calibrated_context(inputs, params)
-        mat = configured_hjc(refs, cfg, strength_scale=scale, **switches)
+        mat = concrete.configured(refs, params.hjc, strength_scale=scale, **switches)
         table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
         print(f"own sigma_n table for switches {switches}")
     else:
@@ -160,16 +133,6 @@ def scene_cavity(inputs, outputs, params):
                                       "deceleration": tr.deceleration}))
     write_csv(pd.DataFrame(rows), outputs.dop)
     write_csv(pd.concat(hist, ignore_index=True), outputs.histories)
-
-
-def calibration_row(cal: dict, value_key: str, source: str) -> dict:
-    """One row of a shipped calibration: the fitted quantity, its value, its data and its residual, and the file it
-    comes from (the levels of the command line read these committed rows, so that they run from a fresh clone)."""
-    data = cal["data"]
-    return {"calibration": cal["calibration"], "fitted_quantity": cal["fitted_quantity"], "parameter": value_key,
-            "value": cal[value_key], "residual_m": cal["residual_m"], "relative_residual": cal["relative_residual"],
-            "measured_depth_m": data["measured_depth"], "striking_velocity_ms": data["vs"], "mass_kg": data["mass"],
-            "nose": data["nose"], "source": source}
 
 
 @task

@@ -7,15 +7,16 @@ import time
 import numpy as np
 import pandas as pd
 
-from .. import reference
+from .. import concrete, reference
 from ..cavity import Controls, Mesh, expand
-from ..cavity_level import INTERPOLATIONS, calibrate_parameter, cavity_trajectory, quasi_static_stress, sigma_table
+from ..cavity_level import (INTERPOLATIONS, calibrate_parameter, cavity_settings, cavity_trajectory,
+                            quasi_static_stress, sigma_table)
 from ..geometry import DoubleOgive
 from ..hjc_effects import MATERIAL_EFFECTS
 from ..io import load_json, read_inference, task, write_csv
 from ..resistance import nose_surface
-from .cavity import calibrated_context, cavity_settings, configured_hjc, do1_shot, read_sigma_table
-from .common import CAVITY, scene_from_inputs
+from .cavity import calibrated_context, read_sigma_table
+from .common import CAVITY, do1_shot, scene_from_inputs
 
 
 @task
@@ -44,8 +45,8 @@ def cavity_ablation(inputs, outputs, params):
             raise ValueError(f"study cavity_ablation, variant {variant['name']!r}: friction is set but effect friction "
                              f"is not listed in {list(effects)}; allowed: list friction or drop the coefficient")
         t0 = time.perf_counter()
-        table, _ = sigma_table(configured_hjc(refs, cfg, strength_scale=scale, **variant.get("material", {})),
-                               cfg["velocities"], sc.radius, mesh, controls)
+        mat = concrete.configured(refs, params.hjc, strength_scale=scale, **variant.get("material", {}))
+        table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
         t1 = time.perf_counter()
         for label, nose_name, m, v in shots:
             tr = cavity_trajectory(sc.noses[nose_name], m, v, table, effects, variant.get("friction", 0.0), cfg["rtol"])
@@ -70,7 +71,7 @@ def cavity_solver_sweep(inputs, outputs, params):
     (DO1 depth against the densest PCHIP table); trajectory rtol at the cavity level."""
     study = params.study
     refs, cfg, mesh, ctl, scale = calibrated_context(inputs, params)
-    mat = configured_hjc(refs, cfg, strength_scale=scale)
+    mat = concrete.configured(refs, params.hjc, strength_scale=scale)
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, _ = do1_shot(refs, params.shot)
     v_cav = study["velocity"]
@@ -146,18 +147,18 @@ def cavity_calibration_variants(inputs, outputs, params):
         with_friction = ("friction",) if mu > 0 else ()
         mesh = Mesh(zones=zones, cap=cfg["cap"])
         t0 = time.perf_counter()
+        laboratory = concrete.configured(refs, params.hjc, **material)
         if (name, zones, mu, material) == ("strength_scale", cfg["zones"], 0.0, {}):  # the calibration of record
             fit = {name: recorded["strength_scale"], "residual_m": recorded["residual_m"]}
         else:
-            fit = calibrate_parameter(configured_hjc(refs, cfg, **material), name, sc.noses["double_ogive"], mass, vs,
-                                      depth, cfg["velocities"], sc.radius, tuple(cfg["effects"]) + with_friction, mu,
-                                      mesh, controls)
+            fit = calibrate_parameter(laboratory, name, sc.noses["double_ogive"], mass, vs, depth, cfg["velocities"],
+                                      sc.radius, tuple(cfg["effects"]) + with_friction, mu, mesh, controls)
         # the same model with the parameter at its laboratory value (strength scale 1, no erosion)
-        raw, _ = sigma_table(configured_hjc(refs, cfg, **material), cfg["velocities"], sc.radius, mesh, controls)
+        raw, _ = sigma_table(laboratory, cfg["velocities"], sc.radius, mesh, controls)
         uncalibrated = cavity_trajectory(sc.noses["double_ogive"], mass, vs, raw, effects + with_friction, mu,
                                          cfg["rtol"]).depth
-        table, _ = sigma_table(configured_hjc(refs, cfg, **material, **{name: fit[name]}), cfg["velocities"],
-                               sc.radius, mesh, controls)
+        table, _ = sigma_table(concrete.configured(refs, params.hjc, **material, **{name: fit[name]}),
+                               cfg["velocities"], sc.radius, mesh, controls)
         for nose_name, nose in sc.noses.items():
             for v in sc.velocities:
                 d = cavity_trajectory(nose, sc.mass, v, table, effects + with_friction, mu, cfg["rtol"]).depth

@@ -1,4 +1,5 @@
-"""What several stages' tasks read: scenes resolved against the result files of a rule's inputs."""
+"""What several stages' tasks read: scenes resolved against the result files of a rule's inputs, the reference
+values of the projectile and the DO1 shot, and the committed rows of the DO1 calibrations."""
 from __future__ import annotations
 
 from ..io import load_json, read_inference
@@ -12,6 +13,21 @@ CAVITY = ("cavity",)  # workflow/scenes/cavity/*.yaml
 def projectile(refs, ids):
     """Steel density and DO1 shank radius (SI) from the reference ids of the config's ``projectile``."""
     return refs[ids["density"]].si, 0.5 * refs[ids["diameter"]].si
+
+
+def do1_shot(refs, ids):
+    """Mass, striking velocity and measured depth of the DO1 shot from the reference ids in ``ids``."""
+    return tuple(refs[ids[q]].si for q in ("mass", "velocity", "depth"))
+
+
+def calibration_row(cal: dict, value_key: str, source: str) -> dict:
+    """One row of a shipped calibration: the fitted quantity, its value, its data and its residual, and the file it
+    comes from (the levels of the command line read these committed rows, so that they run from a fresh clone)."""
+    data = cal["data"]
+    return {"calibration": cal["calibration"], "fitted_quantity": cal["fitted_quantity"], "parameter": value_key,
+            "value": cal[value_key], "residual_m": cal["residual_m"], "relative_residual": cal["relative_residual"],
+            "measured_depth_m": data["measured_depth"], "striking_velocity_ms": data["vs"], "mass_kg": data["mass"],
+            "nose": data["nose"], "source": source}
 
 
 def scene_from_inputs(inputs, levels, placeholder_diameter=None):

@@ -16,16 +16,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import reference
-from ..cavity_level import material_switches
-from ..fe import kernels as K
+from .. import concrete, reference
+from ..fe import state as fields
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import BLOCK_RADIUS, Settings, TargetSpec, binned, lowpass, run_shot
-from ..fe.solver import Controls
+from ..fe.model import Controls
 from ..fe_level import calibrate_failure_strain, expected_depth, with_failure_strain
 from ..io import load_json, read_inference, task, write_csv, write_json
-from .cavity import calibration_row, configured_hjc, do1_shot
-from .common import scene_from_inputs
+from .common import calibration_row, do1_shot, scene_from_inputs
 
 FE = ("fe",)
 
@@ -99,7 +97,7 @@ def calibrate_fe_do1(inputs, outputs, params):
     settings = fe_settings(cfg, params.profile, h)
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
-    material = configured_hjc(refs, params.hjc)
+    material = concrete.configured(refs, params.hjc)
     t0 = time.perf_counter()
     target = TargetSpec("semi_infinite", cfg["target_radius"])
     rho, fc = refs["table1.rho"].si, refs["table1.fc"].si
@@ -128,8 +126,8 @@ def scene_shot(inputs, params, velocity_factor=1.0):
     v = float(params.velocity)
     if not np.any(np.isclose(sc.velocities, v)):
         raise ValueError(f"{sc.name}: velocity {v} is not among the scene's {list(sc.velocities)}")
-    switches = material_switches(sc.effects, sc.material, params.hjc)
-    material = configured_hjc(refs, params.hjc, **switches)
+    switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
+    material = concrete.configured(refs, params.hjc, **switches)
     settings = fe_settings(cfg, params.profile)
     fs = sc.fe.get("erosion_strain")
     provenance = "none (no erosion: only the guards remove inverted elements)"
@@ -168,10 +166,11 @@ def fe_shot(inputs, outputs, params):
     conn = m.conn
     g = m.grid
     fields = pd.DataFrame({"r0": g.R.ravel()[conn].mean(axis=1), "z0": g.Z.ravel()[conn].mean(axis=1), "r": rc, "z": zc,
-                           "damage": m.E[K.DMG], "eps_p": m.E[K.EPSP], "state": m.alive})
+                           "damage": m.E[fields.DMG], "eps_p": m.E[fields.EPSP], "state": m.alive})
     core = fields.r0 < 0.6
     write_csv(hist, outputs.histories)
     write_csv(fields[core & (fields.z0 < r.depth + 1.0)], outputs.fields)
+    write_csv(pd.DataFrame(r.audit), outputs.audit)
     write_json(summary, outputs.json)
 
 
@@ -222,7 +221,7 @@ def fe_nose_pressure(inputs, outputs, params):
     cfg = params.cfg
     cal = load_json(inputs.cal)
     sc = scene_from_inputs(inputs, FE)
-    material = configured_hjc(refs, params.hjc, **material_switches(sc.effects, sc.material, params.hjc))
+    material = concrete.configured(refs, params.hjc, **concrete.material_switches(sc.effects, sc.material, params.hjc))
     v = float(max(sc.velocities))
     rows = {}
     for name in ("double_ogive", "crh45", "crh3"):

@@ -12,35 +12,19 @@ if the whole Welch t interval of the difference of the means (at
 ``confidence``; two one-sided tests at (1 - confidence) / 2 each) lies within
 +-``goal_pct`` per cent of the whole domain's mean depth. The interval is
 divided by the whole domain's mean as if it were exact (its own uncertainty,
-a few tenths of a per cent of it, is left out).
+a few tenths of a per cent of it, is left out; penetration.fe_studies.window_summary).
 """
 from __future__ import annotations
 
 from types import SimpleNamespace
 
 import pandas as pd
-from scipy import stats
 
+from ..fe_studies import window_summary
 from ..io import task, write_csv
 from .fe import scene_shot
 
 DOMAINS = ("window", "whole")
-
-
-def window_summary(runs: pd.DataFrame, confidence: float, goal_pct: float) -> dict:
-    """Mean depths of the window's and the whole domain's realisations, their relative difference (window - whole,
-    per cent of whole) with its Welch t interval, and whether that interval lies within +-goal_pct."""
-    w = runs.loc[runs.domain == "window", "depth_m"].to_numpy()
-    f = runs.loc[runs.domain == "whole", "depth_m"].to_numpy()
-    if w.size < 2 or f.size < 2:
-        raise ValueError(f"window study: {w.size} window and {f.size} whole-domain realisations; allowed: >= 2 each")
-    lo, hi = stats.ttest_ind(w, f, equal_var=False).confidence_interval(confidence)
-    mean_f = f.mean()
-    diff, lo_pct, hi_pct = 100 * (w.mean() - mean_f) / mean_f, 100 * lo / mean_f, 100 * hi / mean_f
-    return {"realisations": int(w.size), "mean_window_m": w.mean(), "mean_whole_m": mean_f,
-            "std_window_m": w.std(ddof=1), "std_whole_m": f.std(ddof=1), "difference_pct": diff,
-            "interval_low_pct": lo_pct, "interval_high_pct": hi_pct, "confidence": confidence,
-            "goal_pct": goal_pct, "within_goal": bool(-goal_pct <= lo_pct and hi_pct <= goal_pct)}
 
 
 @task

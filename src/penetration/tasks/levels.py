@@ -8,27 +8,28 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import reference
-from ..cavity_level import cavity_trajectory, sigma_table
+from .. import concrete, reference
+from ..cavity_level import cavity_settings, cavity_trajectory, sigma_table
 from ..config import load_with, machine_name
 from ..dop import penetration_depth
 from ..geometry import make_nose
 from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
-from ..levels import FC_RULE_RANGE, Context, UserShot, hjc_for_strength, output_fields, predict_rows, run
+from ..levels import Context, UserShot, output_fields, predict_rows, run
 from ..nstar import nstar
 from ..resistance import Target
-from .cavity import cavity_settings, configured_hjc
 from .fe import fe_settings
 
 
 def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profile="full", strength_law=None) -> Context:
-    """The levels' context from the config mapping, the reference CSV and the DO1 calibration files (None: that
-    level is left without its calibration and refuses to run, saying how to build it). A mapping without an fe
+    """The levels' context from the config mapping (its concrete, cavity and validation sections), the reference CSV
+    and the DO1 calibration files (None: that level is left without its calibration and refuses to run, saying how
+    to build it). The base concrete is concrete.configured's, as at the cavity and fe levels. A mapping without an fe
     section leaves the fe level unconfigured (the trajectory and cavity levels do not read it)."""
     refs = reference.load_reference(reference_path)
     mesh, controls = cavity_settings(cfg["cavity"])
     fe = {"fe_settings": fe_settings(cfg["fe"], profile), "fe_target_radius": cfg["fe"]["target_radius"]} if "fe" in cfg else {}
-    ctx = Context(base=configured_hjc(refs, cfg["cavity"]), strength_law=strength_law or cfg["validation"]["strength_law"],
+    ctx = Context(base=concrete.configured(refs, cfg["concrete"]),
+                  strength_law=strength_law or cfg["validation"]["strength_law"],
                   cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,
                   cavity_rtol=cfg["cavity"]["rtol"], **fe)
     if cavity_cal is not None:
@@ -135,12 +136,12 @@ def hjc_scaling(inputs, outputs, params):
     """The HJC set the cavity and fe levels use at each concrete strength of the development shots (and at the
     rule's ends and Table 1's 48 MPa), with the design-code values the rule scales by beside it."""
     refs = reference.load_reference(inputs.reference)
-    base = configured_hjc(refs, params.cfg["cavity"])
+    base = concrete.configured(refs, params.cfg["concrete"])
     shots = pd.read_csv(inputs.shots)
-    fcs = sorted({*(shots.fc_MPa.to_numpy() * 1e6), *FC_RULE_RANGE, base.fc})
+    fcs = sorted({*(shots.fc_MPa.to_numpy() * 1e6), *concrete.FC_RULE_RANGE, base.fc})
     rows = []
     for fc in fcs:
-        m = hjc_for_strength(float(fc), base)
+        m = concrete.hjc_for_strength(float(fc), base)
         K = m.pc / m.muc
         E = 9 * K * m.G / (3 * K + m.G)
         E_aci = 4700e6 * np.sqrt(fc / 1e6)  # ACI 318-19: E = 4700 sqrt(fc) MPa
@@ -216,7 +217,7 @@ def accuracy_cost(inputs, outputs, params):
     cal = load_json(inputs.cal_cavity)
     cfg = params.cfg["cavity"]
     mesh, controls = cavity_settings(cfg)
-    material = configured_hjc(refs, cfg, strength_scale=cal["strength_scale"])
+    material = concrete.configured(refs, params.cfg["concrete"], strength_scale=cal["strength_scale"])
     t_table, (table, _) = _timed(lambda: sigma_table(material, cfg["velocities"], nose.radius, mesh, controls), repeat=1)
     t_shot, _ = _timed(lambda: cavity_trajectory(nose, data["mass"], data["vs"], table, tuple(cal["data"]["effects"]),
                                                  rtol=cfg["rtol"]))

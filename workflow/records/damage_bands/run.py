@@ -24,12 +24,11 @@ import pandas as pd
 import yaml
 
 from penetration import reference
-from penetration.cavity_level import material_switches
-from penetration.fe import kernels as K
+from penetration.fe import state as fields
 from penetration.fe.shot import TargetSpec, run_shot
 from penetration.fe_level import expected_depth, with_failure_strain
 from penetration.io import load_json
-from penetration.tasks.cavity import configured_hjc
+from penetration import concrete
 from penetration.tasks.common import scene_from_inputs
 from penetration.tasks.fe import fe_settings
 
@@ -42,7 +41,7 @@ inputs = SimpleNamespace(do1="results/geometry/double_ogive_table4.json", fig4="
 refs = reference.load_reference(inputs.reference)
 sc = scene_from_inputs(inputs, ("fe",))
 nose = sc.noses["double_ogive"]
-material = configured_hjc(refs, cfg["cavity"], **material_switches(sc.effects, sc.material, cfg["cavity"]))
+material = concrete.configured(refs, cfg["concrete"], **concrete.material_switches(sc.effects, sc.material, cfg["concrete"]))
 across = float(sys.argv[4]) if len(sys.argv) > 4 else 8.0
 fs = float(sys.argv[5]) if len(sys.argv) > 5 else load_json("results/fe/full/calibration_h0.00875.json")["fs"]
 settings = with_failure_strain(fe_settings(cfg["fe"], "full", nose.radius / across), fs)
@@ -56,7 +55,7 @@ m = r.model
 g = m.grid
 conn = g.connectivity()
 fields = pd.DataFrame({"r0": g.R.ravel()[conn].mean(axis=1), "z0": g.Z.ravel()[conn].mean(axis=1),
-                       "damage": m.E[K.DMG], "state": m.alive})
+                       "damage": m.E[fields.DMG], "state": m.alive})
 fields = fields[(fields.r0 < 0.6) & (fields.z0 < r.depth + 0.5)]
 fields.to_csv(HERE / f"{name}_fields.csv.gz", index=False, float_format="%.6g")
 h = r.histories

@@ -19,11 +19,10 @@ from types import SimpleNamespace
 import yaml
 
 from penetration import reference
-from penetration.cavity_level import material_switches
 from penetration.fe.shot import run_shot
 from penetration.fe_level import expected_depth, with_failure_strain
 from penetration.io import load_json
-from penetration.tasks.cavity import configured_hjc
+from penetration import concrete
 from penetration.tasks.common import scene_from_inputs
 from penetration.tasks.fe import _target, fe_settings
 
@@ -36,7 +35,7 @@ inputs = SimpleNamespace(do1="results/geometry/double_ogive_table4.json", fig4="
 refs = reference.load_reference(inputs.reference)
 sc = scene_from_inputs(inputs, ("fe",))
 nose = sc.noses[nose_name]
-material = configured_hjc(refs, cfg["cavity"], **material_switches(sc.effects, sc.material, cfg["cavity"]))
+material = concrete.configured(refs, cfg["concrete"], **concrete.material_switches(sc.effects, sc.material, cfg["concrete"]))
 settings = with_failure_strain(fe_settings(cfg["fe"], "full", nose.radius / across), fs)
 with contextlib.redirect_stdout(io.StringIO()):
     r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg["fe"]),

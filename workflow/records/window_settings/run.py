@@ -26,7 +26,7 @@ first = int(sys.argv[4]) if len(sys.argv) > 4 else 0
 inputs = SimpleNamespace(do1="results/geometry/double_ogive_table4.json", fig4="results/geometry/double_ogive_fig4.json",
                          reference=cfg["reference"], cal="results/fe/full/calibration_h0.00875.json",
                          scene="workflow/scenes/fe/do1.yaml", schema="workflow/schemas/scene.schema.json")
-shot = SimpleNamespace(cfg={**cfg["fe"], "window_ahead": ahead, "window_tail": tail}, hjc=cfg["cavity"],
+shot = SimpleNamespace(cfg={**cfg["fe"], "window_ahead": ahead, "window_tail": tail}, hjc=cfg["concrete"],
                        profile="full", nose="double_ogive", velocity=835.0)
 for k in range(first, first + members):
     with contextlib.redirect_stdout(io.StringIO()):

@@ -1,0 +1,274 @@
+"""The model: mesh, material, boundary conditions, controls and the state arrays they set up.
+
+``Model`` builds the node and element arrays of a grid (``state``'s named groups), the boundary conditions
+(fixities, non-reflecting dashpots), loads and prescribed velocities, and keeps the quantities the audit books
+(hourglass, boundary, contact and eroded energy, dropped mass and momentum). The solver (``solver.run``) advances
+it; ``element_pass`` and ``node_pass`` run one pass of the kernels on its state (the verification problems and the
+speed benchmark use them).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import element_pass as _element_pass, erosion, nodes as _nodes, window
+from .constitutive import impedances, material_of
+from .contact import Projectile
+from .mesh import Grid
+from .state import (ACTIVE, BOUNDARIES, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH,
+                    DROPPED, EROSION_KINDS, FIX_R, FIX_Z, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Boundary, Body, Loads,
+                    Nodes, Rows, Span)
+
+
+@dataclass(frozen=True)
+class Controls:
+    """Numerical controls; defaults follow LS-DYNA's (QH 0.1, Q1 1.5, Q2 0.06, time-step factor 0.9)."""
+    dt_factor: float = 0.9
+    hourglass: float = 0.1
+    q1: float = 1.5
+    q2: float = 0.06
+    erosion: str = "none"
+    erosion_value: float = math.inf
+    guard: bool = True          # erode inverted or time-step-collapsed elements (else stop with a diagnostic)
+    dt_floor: float = 1e-3      # guard threshold: element step below this fraction of the initial step
+    drop_free_nodes: bool = True
+    lateral: str = "free"
+    bottom: str = "free"
+    end_time: float = 0.05
+    output_interval: float = 1e-4
+    max_energy_error: float = 0.5  # stop (unstable) when the audit's relative error exceeds this
+    window_ahead: float | None = None   # m: rows computed down to this far ahead of the tip (None: whole domain)
+    window_behind: float | None = None  # m: rows further behind the tip than this are retired (None: kept)
+
+    def __post_init__(self):
+        if not 0.0 < self.dt_factor <= 1.0:
+            raise ParameterError("fe controls", "dt_factor", self.dt_factor, "0 < dt_factor <= 1")
+        if not 0.0 <= self.hourglass <= 0.15:
+            raise ParameterError("fe controls", "hourglass", self.hourglass, "0 <= hourglass <= 0.15 (unstable above)")
+        if self.erosion not in EROSION_KINDS:
+            raise ParameterError("fe controls", "erosion", self.erosion, f"one of {sorted(EROSION_KINDS)}")
+        if self.erosion != "none" and not self.erosion_value > 0:
+            raise ParameterError("fe controls", "erosion_value", self.erosion_value, "> 0")
+        for key in ("lateral", "bottom"):
+            if getattr(self, key) not in BOUNDARIES:
+                raise ParameterError("fe controls", key, getattr(self, key), f"one of {sorted(BOUNDARIES)}")
+        for key in ("window_ahead", "window_behind"):
+            v = getattr(self, key)
+            if v is not None and not v > 0:
+                raise ParameterError("fe controls", key, v, "> 0 (m) or None")
+        if not (self.end_time > 0 and self.output_interval > 0):
+            raise ParameterError("fe controls", "end_time, output_interval", (self.end_time, self.output_interval), "> 0 (s)")
+
+
+def _boundary_shares(r, z, nodes, centre):
+    """Each node's share (area of revolution) of a boundary line through ``nodes`` and the line's normal there,
+    pointing away from ``centre`` (r, z): (area, n_r, n_z) per node."""
+    r, z = r[nodes], z[nodes]
+    dr, dz = np.diff(r), np.diff(z)
+    length = np.hypot(dr, dz)
+    area = np.pi * (r[:-1] + r[1:]) * length          # surface of revolution of each edge
+    nr_, nz_ = dz / length, -dr / length              # a normal of each edge
+    mid_r, mid_z = 0.5 * (r[:-1] + r[1:]), 0.5 * (z[:-1] + z[1:])
+    flip = (mid_r - centre[0]) * nr_ + (mid_z - centre[1]) * nz_ < 0
+    nr_[flip], nz_[flip] = -nr_[flip], -nz_[flip]
+    a = np.zeros(nodes.size)
+    vn = np.zeros((2, nodes.size))
+    for k in (0, 1):
+        sl = slice(k, k + area.size)
+        a[sl] += area / 2
+        vn[0, sl] += nr_ * area / 2
+        vn[1, sl] += nz_ * area / 2
+    norm = np.hypot(vn[0], vn[1])
+    return a, vn[0] / norm, vn[1] / norm
+
+
+@dataclass
+class Model:
+    grid: Grid
+    material: object
+    controls: Controls = field(default_factory=Controls)
+
+    def __post_init__(self):
+        g, c = self.grid, self.controls
+        self.nr, self.nz = g.nr, g.nz
+        self.X = np.vstack(g.nodes())   # node positions (rows r, z)
+        self.r, self.z = self.X
+        nn, ne = self.r.size, g.elements
+        self.V = np.zeros((4, nn))   # velocities (rows VR, VZ) and those before the node pass (VR0, VZ0)
+        self.vr, self.vz, self.vr0, self.vz0 = self.V
+        self.mat = material_of(self.material)
+        self.kind, self.q = self.mat
+        rho0 = self.material.rho0
+        self.E = np.zeros((N_FIELDS, ne))
+        self.alive = np.full(ne, LIVE, np.uint8)
+        self.F = np.zeros((8, ne))
+        conn = g.connectivity()
+        rr, zz = self.r[conn], self.z[conn]
+        rn, zn = np.roll(rr, -1, axis=1), np.roll(zz, -1, axis=1)
+        V = 2 * np.pi * np.sum((rr + rn) * (rr * zn - rn * zz), axis=1) / 6.0  # 2 pi integral of r dA
+        self.E[V0] = V
+        self.E[MASS] = rho0 * V
+        self.mass = np.zeros(nn)
+        np.add.at(self.mass, conn.ravel(), np.repeat(self.E[MASS] / 4, 4))
+        self.count = np.zeros(nn, np.int32)
+        np.add.at(self.count, conn.ravel(), 1)
+        self.nstate = np.full(nn, ACTIVE, np.int8)
+        self.on_axis = (self.r == 0.0)
+        self.conn = conn
+        self.zp, self.zs = impedances(self.material)
+        self.fix = np.zeros(nn, np.int8)
+        self.fix[self.on_axis] |= FIX_R
+        self.dash = np.zeros((3, nn))
+        self.rowdash = np.zeros(g.nz + 1, np.int8)  # 1: a node of the row off the grid's edges has a dashpot
+        side_i = np.arange(g.nz + 1) * (g.nr + 1) + g.nr     # i = nr (lateral face of a cylinder)
+        side_j = g.nz * (g.nr + 1) + np.arange(g.nr + 1)     # j = nz (bottom face)
+        for nodes, kind, bit in ((side_i, c.lateral, FIX_R), (side_j, c.bottom, FIX_Z)):
+            if kind == "roller":
+                self.fix[nodes] |= bit
+            elif kind == "non_reflecting":
+                self.add_dashpots(nodes)
+        self.ctl = np.zeros(N_CTL)
+        self.ctl[[C_QH, C_Q1, C_Q2]] = c.hourglass, c.q1, c.q2
+        self.ctl[C_EROSION] = EROSION_KINDS[c.erosion]
+        self.ctl[C_EROSION_VALUE] = c.erosion_value if math.isfinite(c.erosion_value) else 1e300
+        self.ctl[C_GUARD] = float(c.guard)
+        self.rows = Rows(g.nz)
+        # booked quantities
+        self.t = 0.0
+        self.steps = 0
+        self.E_eroded = 0.0
+        self.eroded_mass = 0.0
+        self.dropped_mass = 0.0
+        self.dropped_momentum_z = 0.0
+        self.j0, self.j1 = 0, g.nz
+        self.window_started = False
+        self.E_window = 0.0
+        self.window_mass = 0.0
+        self.dash_base = self.dash.copy()
+        self.presc_i, self.presc_v = np.zeros(0, np.int64), np.zeros((2, 0))
+        self.load_i, self.load_f = np.zeros(0, np.int64), np.zeros((2, 0))
+        self.dt = self._initial_dt()
+        self.dt0 = self.dt
+        self.ctl[C_DTMIN] = c.dt_floor * self.dt0 / c.dt_factor
+
+    # ---------------------------------------------------------------- the kernels' view
+    def span(self):
+        return Span(self.nr, self.nz, self.j0, self.j1)
+
+    def nodes(self):
+        return Nodes(self.r, self.z, self.vr, self.vz, self.vr0, self.vz0, self.mass, self.nstate, self.on_axis)
+
+
+    def boundary(self):
+        return Boundary(self.fix, self.dash, self.rowdash, self.zp, self.zs)
+
+    def loads(self):
+        return Loads(self.presc_i, self.presc_v, self.load_i, self.load_f)
+
+    def element_pass(self, dt):
+        """One element pass over the active rows at step dt (stresses, energies, forces, Rows)."""
+        self.ctl[C_DT] = dt
+        _element_pass.element_pass(self.span(), self.X, self.V, self.kind, self.q, self.ctl, self.E, self.F, self.alive,
+                                   self.rows.f, self.rows.i)
+
+    def node_pass(self, dtv):
+        """One node pass over the active node rows (velocities by dtv)."""
+        _nodes.node_pass(self.span(), self.F, self.alive, self.mass, self.nstate, self.fix, self.dash, self.rowdash,
+                         (self.zp, self.zs), dtv, self.V, self.rows.f)
+
+    # ---------------------------------------------------------------- set-up
+    def prescribe(self, nodes, vr, vz):
+        """Prescribe the velocity (vr, vz) of ``nodes`` (their work is booked as external work)."""
+        nodes = np.asarray(nodes, np.int64)
+        self.presc_i = nodes
+        self.presc_v = np.vstack([np.broadcast_to(vr, nodes.shape), np.broadcast_to(vz, nodes.shape)]).astype(float)
+        self.vr[nodes], self.vz[nodes] = self.presc_v
+
+    def load(self, nodes, fr, fz):
+        """Constant external nodal forces (N) on ``nodes`` (their work is booked as external work)."""
+        nodes = np.asarray(nodes, np.int64)
+        self.load_i = nodes
+        self.load_f = np.vstack([np.broadcast_to(fr, nodes.shape), np.broadcast_to(fz, nodes.shape)]).astype(float)
+
+    def pressure(self, nodes, p):
+        """Nodal forces of a pressure p (Pa) on the boundary line through ``nodes`` (in order), pushing into
+        the mesh: each edge's surface of revolution times p, half to each end node."""
+        nodes = np.asarray(nodes, np.int64)
+        r, z = self.r[nodes], self.z[nodes]
+        dr, dz = np.diff(r), np.diff(z)
+        length = np.hypot(dr, dz)
+        area = np.pi * (r[:-1] + r[1:]) * length
+        nr_, nz_ = dz / length, -dr / length
+        mid_r, mid_z = 0.5 * (r[:-1] + r[1:]), 0.5 * (z[:-1] + z[1:])
+        rc, zc = self.centroids()
+        near = [int(np.argmin((rc - a) ** 2 + (zc - c) ** 2)) for a, c in zip(mid_r, mid_z)]  # the element behind each edge
+        inward = np.sign((rc[near] - mid_r) * nr_ + (zc[near] - mid_z) * nz_)
+        f = np.zeros((2, nodes.size))
+        for k in (0, 1):
+            f[0, k:k + area.size] += 0.5 * p * area * nr_ * inward
+            f[1, k:k + area.size] += 0.5 * p * area * nz_ * inward
+        self.load(nodes, f[0], f[1])
+
+    def add_dashpots(self, nodes):
+        """Non-reflecting dashpots on the boundary line through ``nodes`` (normals outward from the mesh centre)."""
+        a, nr_, nz_ = _boundary_shares(self.r, self.z, nodes, (self.r.mean(), self.z.mean()))
+        self.dash[0, nodes] += a
+        self.dash[1, nodes] = nr_
+        self.dash[2, nodes] = nz_
+        self.mark_dashpot_rows()
+
+    def mark_dashpot_rows(self):
+        """rowdash from dash (the node pass skips the dashpot's arithmetic in the other rows)."""
+        g = self.grid
+        inner = self.dash[0].reshape(g.nz + 1, g.nr + 1)[:, 1:g.nr]
+        self.rowdash[:] = (inner > 0.0).any(axis=1)
+
+    def _initial_dt(self):
+        """Stable step of the undeformed mesh (one element pass at rest)."""
+        E0 = self.E.copy()
+        self.element_pass(0.0)
+        self.E[:] = E0
+        self.F[:] = 0.0
+        return self.controls.dt_factor * float(self.rows.dt.min())
+
+    def set_window(self, Zt):
+        """Move the window of active rows with the projectile's tip (``window.follow``)."""
+        window.follow(self, Zt)
+
+    def retire_eroded(self):
+        """Remove the elements eroded in the last pass (``erosion.retire``)."""
+        return erosion.retire(self)
+
+    # ---------------------------------------------------------------- measures
+    def kinetic_energy(self):
+        keep = self.nstate < DROPPED
+        return 0.5 * float(np.sum(self.mass[keep] * (self.vr[keep] ** 2 + self.vz[keep] ** 2)))
+
+    def internal_energy(self):
+        return float(self.E[IE, self.alive == LIVE].sum())
+
+    def momentum_z(self):
+        keep = self.nstate < DROPPED
+        return float(np.sum(self.mass[keep] * self.vz[keep]))
+
+    def centroids(self):
+        return self.r[self.conn].mean(axis=1), self.z[self.conn].mean(axis=1)
+
+    def where(self, e):
+        """Element e's index, grid position and centre, for people."""
+        rc, zc = self.centroids()
+        i, j = e % self.nr, e // self.nr
+        return f"element {e} (i {i}, j {j}) at r = {rc[e]:.4g} m, z = {zc[e]:.4g} m"
+
+
+def body_of(projectile: Projectile | None, nn):
+    """The kernels' view of a projectile (outline and contact buffers for nn nodes); a stand-in when there is none."""
+    if projectile is None:
+        return Body(np.array([0.0, 1.0]), np.array([0.0, 0.0]), 0.0, np.zeros(nn, np.int64), np.zeros((4, nn)))
+    rho = np.ascontiguousarray(projectile.rho, float)
+    return Body(np.ascontiguousarray(projectile.zeta, float), rho, float(rho.max()), np.zeros(nn, np.int64),
+                np.zeros((4, nn)))
+
