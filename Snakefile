@@ -46,9 +46,9 @@ CONVERGENCE_PROFILES = list(config["fe_convergence"]["profiles"])
 # the FE nose contrasts): centre -> its band's profiles
 BANDS = {centre: list(band) for centre, band in config["fe_band"]["bands"].items()}
 BAND_PROFILES = [p for band in BANDS.values() for p in band]  # a name in two bands shows twice (refused below)
-BAND_SIZES = {p: h for band in config["fe_band"]["bands"].values() for p, h in band.items()}
+BAND_SIZES = {p: h for band in config["fe_band"]["sizes"].values() for p, h in band.items()}
 # element size of every profile beyond full and ci
-EXTRA_PROFILES = {**config["fe_convergence"]["profiles"], **BAND_SIZES}
+EXTRA_PROFILES = {**config["fe_convergence"]["sizes"], **BAND_SIZES}  # profile -> element size (m)
 for centre in BANDS:
     if centre not in ["full", *CONVERGENCE_PROFILES]:
         raise ValueError(f"fe_band.bands.{centre}: allowed centres full or a profile of fe_convergence.profiles "
@@ -79,7 +79,7 @@ def fe_cfg(profile):
     if profile not in EXTRA_PROFILES:
         return config["fe"]
     h = EXTRA_PROFILES[profile]
-    return {**config["fe"], "profiles": {**config["fe"]["profiles"], profile: {"element_size": h, "mesh_study": [h]}}}
+    return {**config["fe"], "profiles": {**config["fe"]["profiles"], profile: {"element_size": h, "mesh_study_sizes": [h]}}}
 
 
 def cfg_slice(*keys, **slices):

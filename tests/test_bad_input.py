@@ -252,11 +252,11 @@ def test_fe_scenes_of_the_pipeline_are_valid():
     assert ("double_ogive", "835") in shots["do1"] and len(shots["table3"]) == 12 and len(shots["fig15"]) == 24
 
 
-@pytest.mark.parametrize("profiles,needle", [({"full": 0.005}, "fe_convergence.profiles"),
-                                             ({"fine": 0.0005}, "fe_convergence.profiles.fine"),
-                                             ({"Fine": 0.005}, "fe_convergence.profiles"), ({}, "fe_convergence.profiles")])
+@pytest.mark.parametrize("profiles,needle", [({"full": 10}, "fe_convergence.profiles"),
+                                             ({"fine": 0.5}, "fe_convergence.profiles.fine"),
+                                             ({"Fine": 10}, "fe_convergence.profiles"), ({}, "fe_convergence.profiles")])
 def test_convergence_profiles_are_checked(profiles, needle):
-    """A convergence mesh profile needs a new lower-case name and an element size in (1 mm, 50 mm]."""
+    """A convergence mesh profile needs a new lower-case name and 1 to 40 elements across the shank radius."""
     cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
     cfg["fe_convergence"]["profiles"] = profiles
     with pytest.raises(ConfigError, match=needle):
@@ -264,14 +264,14 @@ def test_convergence_profiles_are_checked(profiles, needle):
 
 
 @pytest.mark.parametrize("band,needle", [({"bands": {"full": {}}, "confidence": 0.95}, "fe_band.bands.full"),
-                                         ({"bands": {"full": {"fine": 0.009}}, "confidence": 0.95}, "fe_band.bands.full"),
-                                         ({"bands": {"ci": {"band3": 0.02}}, "confidence": 0.95}, "fe_band.bands"),
-                                         ({"bands": {"full": {"band1": 0.009, "band2": 0.0005}}, "confidence": 0.95},
+                                         ({"bands": {"full": {"fine": 8.5}}, "confidence": 0.95}, "fe_band.bands.full"),
+                                         ({"bands": {"ci": {"band3": 3.5}}, "confidence": 0.95}, "fe_band.bands"),
+                                         ({"bands": {"full": {"band1": 8.5, "band2": 0.5}}, "confidence": 0.95},
                                           "fe_band.bands.full.band2"),
-                                         ({"bands": {"full": {"band1": 0.009}}, "confidence": 1.0}, "fe_band.confidence")])
+                                         ({"bands": {"full": {"band1": 8.5}}, "confidence": 1.0}, "fe_band.confidence")])
 def test_band_profiles_are_checked(band, needle):
-    """A mesh band is centred on full or a convergence profile and holds profiles named band and digits, element
-    sizes in (1 mm, 50 mm]; its interval's confidence lies in (0, 1)."""
+    """A mesh band is centred on full or a convergence profile and holds profiles named band and digits, each 1 to 40
+    elements across the shank radius; its interval's confidence lies in (0, 1)."""
     cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
     cfg["fe_band"] = band
     with pytest.raises(ConfigError, match=needle):

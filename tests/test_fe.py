@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from penetration.fe import Controls, Grid, MeshSpec, Model, Projectile, Unstable, body_outline, build, run
-from penetration.fe import state as fields
+from penetration.fe import state as fe_state
 from penetration.fe.nodes import node_pass
 from penetration.fe import setups
 from penetration.geometry import Flat, Ogive
@@ -107,7 +107,7 @@ def test_hourglass_control_stays_active_in_fully_damaged_material():
     mode and its work is positive; a linear field in the same elements gets no hourglass force."""
     g = Grid.tensor(np.linspace(0.5, 0.6, 3), np.linspace(0.0, 0.1, 3))
     m = Model(g, HJC(), Controls(hourglass=0.1))
-    m.E[fields.DMG] = 1.0
+    m.E[fe_state.DMG] = 1.0
     h = np.array([1.0, -1.0, 1.0, -1.0])
     m.vz[:] = 0.0
     for e, nodes in enumerate(g.connectivity()):
@@ -117,7 +117,7 @@ def test_hourglass_control_stays_active_in_fully_damaged_material():
     assert m.rows.hg.sum() > 0
     assert np.dot(fz, m.vz) > 0  # internal force in the direction of the mode: the node update opposes it
     m2 = Model(g, HJC(), Controls(hourglass=0.1))
-    m2.E[fields.DMG] = 1.0
+    m2.E[fe_state.DMG] = 1.0
     m2.vz[:] = 0.1 * m2.z
     _pass(m2, 1e-7)
     assert m2.rows.hg.sum() < 1e-12 * m.rows.hg.sum()
@@ -160,11 +160,11 @@ def test_node_pass_without_dashpot_arithmetic_gives_the_same_velocities():
     out = []
     for flags in (m.rowdash, np.ones_like(m.rowdash)):
         V = np.zeros_like(m.V)
-        V[fields.VR], V[fields.VZ] = np.sin(np.arange(m.vr.size)), np.cos(np.arange(m.vz.size))
-        V[fields.VR, m.on_axis] = 0.0
+        V[fe_state.VR], V[fe_state.VZ] = np.sin(np.arange(m.vr.size)), np.cos(np.arange(m.vz.size))
+        V[fe_state.VR, m.on_axis] = 0.0
         rf = np.zeros_like(m.rows.f)
         node_pass(m.span(), F, m.alive, m.mass, m.nstate, m.fix, m.dash, flags, (m.zp, m.zs), 1e-6, V, rf)
-        out.append((V[fields.VR], V[fields.VZ], rf[[fields.RF_POWER, fields.RF_IMPULSE]]))
+        out.append((V[fe_state.VR], V[fe_state.VZ], rf[[fe_state.RF_POWER, fe_state.RF_IMPULSE]]))
     for a, b in zip(out[0], out[1]):
         assert np.array_equal(a, b)
     assert np.all(out[0][2][0, [7, g.nz]] != 0.0)  # the dashpots absorbed power where they are
@@ -183,32 +183,32 @@ def test_elastic_elements_of_the_vectorised_update_are_still_checked(case):
     m = Model(build(MeshSpec(0.05, 0.2, 1.0, 0.6, 1.2, 1.2)), HJC(), controls)
     m.vz[:] = -1e-3 * m.z   # a uniaxial compression far inside the elastic range
     if case in ("floor", "guarded_floor"):
-        m.ctl[fields.C_DTMIN] = 2.0 * m.dt0
+        m.ctl[fe_state.C_DTMIN] = 2.0 * m.dt0
     if case == "non_finite":
-        m.E[fields.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
+        m.E[fe_state.IE, m.nr + 5] = np.inf   # an element that is otherwise fine: only the check can catch it
     marked = m.nr + 5
     if case == "plastic_strain":
-        m.E[fields.EPSP, marked] = 0.5      # plastic strain from earlier steps, no flow now
+        m.E[fe_state.EPSP, marked] = 0.5      # plastic strain from earlier steps, no flow now
     if case == "damage":
-        m.E[fields.DMG, marked] = 0.95      # damaged earlier, elastic now
+        m.E[fe_state.DMG, marked] = 0.95      # damaged earlier, elastic now
     E0 = m.E.copy()
     _pass(m, 1e-7)
-    assert np.all(m.E[fields.EPSP] == E0[fields.EPSP]) and np.all(m.E[fields.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
-    assert np.all(m.E[fields.DMG] == E0[fields.DMG])
+    assert np.all(m.E[fe_state.EPSP] == E0[fe_state.EPSP]) and np.all(m.E[fe_state.MUP] == 0.0)  # elastic: hjc.quick_update's case (a)
+    assert np.all(m.E[fe_state.DMG] == E0[fe_state.DMG])
     if case in ("plastic_strain", "damage"):
-        assert np.flatnonzero(m.alive == fields.ERODING).tolist() == [marked]
-        assert m.rows.ero.sum() == m.E[fields.IE, marked] > 0 and np.all(m.rows.fail == -1)
+        assert np.flatnonzero(m.alive == fe_state.ERODING).tolist() == [marked]
+        assert m.rows.ero.sum() == m.E[fe_state.IE, marked] > 0 and np.all(m.rows.fail == -1)
     elif case == "guarded_floor":
-        assert np.all(m.alive == fields.ERODING) and np.all(m.rows.fail == -1)
+        assert np.all(m.alive == fe_state.ERODING) and np.all(m.rows.fail == -1)
     elif case == "erosion":
-        assert np.all(m.alive == fields.ERODING)
-        assert math.isclose(m.rows.ero.sum(), m.E[fields.IE].sum(), rel_tol=1e-12) and m.rows.ero.sum() > 0
-        assert np.all(m.E[fields.IE] > E0[fields.IE])
+        assert np.all(m.alive == fe_state.ERODING)
+        assert math.isclose(m.rows.ero.sum(), m.E[fe_state.IE].sum(), rel_tol=1e-12) and m.rows.ero.sum() > 0
+        assert np.all(m.E[fe_state.IE] > E0[fe_state.IE])
     elif case == "floor":
-        assert m.rows.fail[0] == 0 and m.rows.code[0] == fields.DT_COLLAPSE
+        assert m.rows.fail[0] == 0 and m.rows.code[0] == fe_state.DT_COLLAPSE
     else:
         assert [j for j in range(m.nz) if m.rows.fail[j] >= 0] == [1]
-        assert m.rows.fail[1] == m.nr + 5 and m.rows.code[1] == fields.NON_FINITE
+        assert m.rows.fail[1] == m.nr + 5 and m.rows.code[1] == fe_state.NON_FINITE
 
 
 def test_an_elastic_pass_changes_no_row_of_E_outside_the_step_stores():
@@ -223,10 +223,10 @@ def test_an_elastic_pass_changes_no_row_of_E_outside_the_step_stores():
     _elastic_state(m)
     E0 = m.E.copy()
     _pass(m, 0.5 * m.dt)
-    others = [f for f in range(fields.N_FIELDS) if f not in fields.STEP_STORES]
-    assert sorted(others) == sorted([fields.MUP, fields.DMG, fields.V0, fields.MASS])
+    others = [f for f in range(fe_state.N_FIELDS) if f not in fe_state.STEP_STORES]
+    assert sorted(others) == sorted([fe_state.MUP, fe_state.DMG, fe_state.V0, fe_state.MASS])
     assert np.array_equal(m.E[others], E0[others])
-    assert all(np.any(m.E[f] != E0[f]) for f in (fields.SRR, fields.SZZ, fields.STT, fields.SRZ, fields.P, fields.IE, fields.EPSEFF))
+    assert all(np.any(m.E[f] != E0[f]) for f in (fe_state.SRR, fe_state.SZZ, fe_state.STT, fe_state.SRZ, fe_state.P, fe_state.IE, fe_state.EPSEFF))
 
 
 def test_a_check_row_carries_its_deviation_and_verdict():

@@ -313,9 +313,9 @@ def test_sizes_beyond_the_machine_are_refused_with_their_bound(monkeypatch):
     assert "sweep.sizes.fe: [100000] is not allowed: at most the 78 shots of the sweep's grid" in text
     text = refused_config(config(**{"cavity/zones": 5000}))
     assert "cavity.zones: 5000 is not allowed" in text and "zones^2" in text and "at most 1906 zones" in text
-    text = refused_config(config(**{"fe/profiles/full/element_size": 1e-5}))
-    assert "fe.profiles.full.element_size: 1e-05 m is not allowed" in text
-    assert "bytes per element" in text and "os.sysconf" in text and "allowed: an element size of at least" in text
+    text = refused_config(config(**{"fe/profiles/full/elements_across": 1000}))
+    assert "fe.profiles.full.elements_across: 1000 elements across the shank radius" in text and "is not allowed" in text
+    assert "bytes per element" in text and "os.sysconf" in text and "allowed: at most" in text and "elements across" in text
 
 
 def test_fe_mesh_estimate_counts_the_meshes_the_level_builds():

@@ -193,7 +193,7 @@ ORDERED_LISTS = {
     "cavity.velocities": "increasing",          # the sigma_n(v) table's nodes
     "cavity.quasi_static_from": "increasing",   # two slow velocities v1 < v2
     "fe.cutoffs_hz": "increasing",
-    "fe.profiles.*.mesh_study": "distinct",     # element sizes, listed coarse to fine
+    "fe.profiles.*.mesh_study": "distinct",     # elements across the shank radius, listed coarse to fine
     "fig01.strengths": "increasing",
     "fig10.unload_from": "increasing",
     "diameter_450kg.axes.[].velocity": "distinct",
@@ -303,6 +303,27 @@ def _ordered_problems(cfg, source):
     return bad
 
 
+def element_size(radius, across):
+    """The element size (m) of a mesh with ``across`` elements across the shank radius: the radius over it at 12
+    significant digits (the size that names a profile's calibration files and records)."""
+    return float(f"{radius / across:.12g}")
+
+
+def element_sizes(cfg, radius):
+    """Add to ``cfg`` the element size of every FE mesh profile, which the config gives as elements across the shank
+    radius: fe.profiles.*.element_size and .mesh_study_sizes, fe_convergence.sizes, fe_band.sizes (profile name ->
+    element size in m)."""
+    for spec in cfg["fe"]["profiles"].values():
+        spec["element_size"] = element_size(radius, spec["elements_across"])
+        spec["mesh_study_sizes"] = [element_size(radius, n) for n in spec["mesh_study"]]
+    if "fe_convergence" in cfg:
+        cfg["fe_convergence"]["sizes"] = {p: element_size(radius, n) for p, n in cfg["fe_convergence"]["profiles"].items()}
+    if "fe_band" in cfg:
+        cfg["fe_band"]["sizes"] = {c: {p: element_size(radius, n) for p, n in band.items()}
+                                   for c, band in cfg["fe_band"]["bands"].items()}
+    return cfg
+
+
 def _size_problems(cfg, source, refs):
     """Sizes beyond what this machine can hold or run: FE meshes against its memory, cavity zones against the
     cost of a table, sweep sizes against the sweep's grid."""
@@ -311,9 +332,10 @@ def _size_problems(cfg, source, refs):
     radius = 0.5 * refs[cfg["projectile"]["diameter"]].si
     depth = refs[cfg["calibration"]["do1"]["depth"]].si
     ram = machine_memory()
-    sizes = (_paths(cfg, "fe.profiles.*.element_size") + _paths(cfg, "fe.profiles.*.mesh_study.[]")
+    sizes = (_paths(cfg, "fe.profiles.*.elements_across") + _paths(cfg, "fe.profiles.*.mesh_study.[]")
              + _paths(cfg, "fe_convergence.profiles.*") + _paths(cfg, "fe_band.bands.*.*"))
-    for where, h in sizes:
+    for where, across in sizes:
+        h = element_size(radius, across)
         n = fe_mesh_elements(h, fe, radius, depth)
         need = n * FE_BYTES_PER_ELEMENT
         if need > ram:
@@ -321,13 +343,13 @@ def _size_problems(cfg, source, refs):
             while hi - lo > 1e-3 * lo:
                 mid = math.sqrt(lo * hi)
                 lo, hi = (lo, mid) if fe_mesh_elements(mid, fe, radius, depth) * FE_BYTES_PER_ELEMENT <= ram else (mid, hi)
-            bad.append(f"{source}: {where}: {h:g} m is not allowed: the DO1 calibration shot's mesh (every element size "
+            bad.append(f"{source}: {where}: {across:g} elements across the shank radius ({h:.3g} m elements) is not allowed: the DO1 calibration shot's mesh (every element size "
                        f"is calibrated on DO1) would have about {n:.3g} elements (a core of {fe['core_calibers']:g} "
                        f"shank radii of {radius:g} m and {depth + 0.5 * fe['depth_margin']:g} m deep, graded by "
                        f"{fe['grading']:g} to the {fe['target_radius']:g} m target radius and "
                        f"{depth + fe['depth_margin']:g} m), about {need / 1e9:.3g} GB at {FE_BYTES_PER_ELEMENT} bytes "
-                       f"per element, beyond this machine's {ram / 1e9:.3g} GB of memory (os.sysconf); allowed: an "
-                       f"element size of at least {hi:.3g} m")
+                       f"per element, beyond this machine's {ram / 1e9:.3g} GB of memory (os.sysconf); allowed: at "
+                       f"most {radius / hi:.3g} elements across (elements of at least {hi:.3g} m)")
     cav = cfg["cavity"]
     expansions = len(cav["velocities"]) + len(cav["quasi_static_from"])
     per_table = lambda z: CAVITY_SECONDS_AT_100_ZONES * (z / 100.0) ** 2 * expansions
@@ -363,6 +385,7 @@ def check_config(cfg: dict, schema_path, source: str) -> dict:
                for dotted in REFERENCE_FIELDS for value in _values(cfg, dotted) if value not in ids]
     if unknown:
         raise ConfigError("\n".join(unknown))
+    element_sizes(cfg, 0.5 * ids[cfg["projectile"]["diameter"]].si)
     bad = _ordered_problems(cfg, source) + _size_problems(cfg, source, ids)
     if bad:
         raise ConfigError("\n".join(bad))

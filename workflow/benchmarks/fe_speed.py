@@ -35,7 +35,7 @@ import numpy as np
 from numba import njit, prange
 
 from nstar_speed import machine
-from penetration.fe import state as fields
+from penetration.fe import state as fe_state
 from penetration.fe.element_pass import element_pass
 from penetration.fe.mesh import MeshSpec, build
 from penetration.fe.model import Controls, Model
@@ -127,7 +127,7 @@ def step_bytes(m: Model):
     """Bytes one explicit step reads and writes, each array once (element pass, node pass, move): every row of
     E read, the rows the element pass stores for every element (state.STEP_STORES) written."""
     nodes = [m.r, m.z, m.vr, m.vz]
-    element = m.E.nbytes + m.E[list(fields.STEP_STORES)].nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
+    element = m.E.nbytes + m.E[list(fe_state.STEP_STORES)].nbytes + m.F.nbytes + m.alive.nbytes + sum(a.nbytes for a in nodes)
     # the dashpot arrays are read on the grid's edges and in rows flagged in rowdash only
     g = m.grid
     edge = np.zeros((g.nz + 1, g.nr + 1), bool)
@@ -154,7 +154,7 @@ def _elastic_time(spec: MeshSpec, repeat, element_steps=6e6):
     the number of elements; the bytes one step moves."""
     m = Model(build(spec), HJC(), Controls())
     dt = 0.5 * m.dt
-    m.ctl[fields.C_DT] = dt
+    m.ctl[fe_state.C_DT] = dt
     _elastic_state(m)
     span = m.span()
 
@@ -174,10 +174,10 @@ def _window_step_time(m: Model, steps, repeat):
     fraction of the window's live elements whose plastic strain or crush (mu_p) grows in the first such step:
     those take the scalar HJC update, the others the vectorised elastic one."""
     X, V, E, alive, F = (a.copy() for a in (m.X, m.V, m.E, m.alive, m.F))
-    r, z, vr, vz = X[0], X[1], V[fields.VR], V[fields.VZ]
+    r, z, vr, vz = X[0], X[1], V[fe_state.VR], V[fe_state.VZ]
     rows = m.rows.copy()
     ctl = m.ctl.copy()
-    dt = float(ctl[fields.C_DT])
+    dt = float(ctl[fe_state.C_DT])
     span = m.span()
 
     def step():
@@ -187,8 +187,8 @@ def _window_step_time(m: Model, steps, repeat):
 
     step()
     w = slice(m.j0 * m.nr, m.j1 * m.nr)
-    grow = (E[fields.EPSP, w] > m.E[fields.EPSP, w]) | (E[fields.MUP, w] > m.E[fields.MUP, w])
-    live = m.alive[w] == fields.LIVE
+    grow = (E[fe_state.EPSP, w] > m.E[fe_state.EPSP, w]) | (E[fe_state.MUP, w] > m.E[fe_state.MUP, w])
+    live = m.alive[w] == fe_state.LIVE
     flowing = float((grow & live).sum() / max(live.sum(), 1))
     return _best(step, steps, repeat, _snapshot((r, z, vr, vz, E, alive, F))) / ((m.j1 - m.j0) * m.nr), flowing
 
@@ -217,7 +217,7 @@ def main():
     m = Model(build(MeshSpec(args.size, 0.21, 2.5, 1.2, 2.5, 1.1)), HJC(), Controls())
     base = (m.r.copy(), m.z.copy(), m.E.copy())
     dt = 0.5 * m.dt
-    m.ctl[fields.C_DT] = dt
+    m.ctl[fe_state.C_DT] = dt
     span = m.span()
 
     def node():
@@ -244,7 +244,7 @@ def main():
     times = {}
     for label in ("elastic", "plastic"):
         m.r[:], m.z[:], m.E[:] = base[0], base[1], base[2]
-        m.alive[:] = fields.LIVE
+        m.alive[:] = fe_state.LIVE
         if label == "elastic":
             _elastic_state(m)
         else:
@@ -255,8 +255,8 @@ def main():
         restore = _snapshot((m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F)) if label == "plastic" else None
         split = [x / ne for x in _best_split((node, move, element), args.steps, args.repeat, restore)]
         per = times[label] = sum(split)
-        yielded = float((m.E[fields.EPSP] > 0).mean())
-        live = float((m.alive == fields.LIVE).mean())
+        yielded = float((m.E[fe_state.EPSP] > 0).mean())
+        live = float((m.alive == fe_state.LIVE).mean())
         print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step; "
               f"node pass {split[0] * 1e9:.1f}, move {split[1] * 1e9:.1f}, element pass {split[2] * 1e9:.1f} ns")
     # cache or memory? The arrays of the benchmark mesh (and of the DO1 window) fit in the last-level cache of the
@@ -286,7 +286,7 @@ def main():
                 callback(mm, t)
                 if "t" not in snap and t >= 6e-3:
                     per, flowing = _window_step_time(mm, args.steps, args.repeat)
-                    snap.update(t=t, per=per, flowing=flowing, window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[fields.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
+                    snap.update(t=t, per=per, flowing=flowing, window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[fe_state.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
             return solver_run(model, projectile, callback=cb)
 
         fe_shot.run = run_with_snapshot

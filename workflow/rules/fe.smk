@@ -137,7 +137,7 @@ use rule fe_fig12 as fe_do1_fields with:
 
 use rule fe_fig12 as fe_mesh_study with:
     input: **task("tasks.fe_studies"),
-           calibrations=lambda w: [f"results/fe/{w.profile}/calibration_h{h}.json" for h in config["fe"]["profiles"][w.profile]["mesh_study"]],
+           calibrations=lambda w: [f"results/fe/{w.profile}/calibration_h{h}.json" for h in config["fe"]["profiles"][w.profile]["mesh_study_sizes"]],
     output: png=report("figures/timing/fe_mesh_study_{profile}.png", caption="../report/captions/fe_mesh_study.rst", category="Timing (machine-dependent)"), csv="figures/timing/fe_mesh_study_{profile}.csv",
     params: dpi=config["figures"]["dpi"],
     benchmark: "results/benchmarks/fe_mesh_study_{profile}.tsv"

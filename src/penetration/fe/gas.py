@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from . import state as fields
+from . import state as fe_state
 from .model import Model
 from .nodes import move, node_pass
 
@@ -40,7 +40,7 @@ def _geometry(m: Model):
     sides = np.stack([(r2 - r1) ** 2 + (z2 - z1) ** 2, (r3 - r2) ** 2 + (z3 - z2) ** 2,
                       (r4 - r3) ** 2 + (z4 - z3) ** 2, (r1 - r4) ** 2 + (z1 - z4) ** 2]).max(axis=0)
     V = 2.0 * math.pi * W
-    return V, dW, bz, 0.5 * A2 / np.sqrt(sides), m.E[fields.MASS] / V
+    return V, dW, bz, 0.5 * A2 / np.sqrt(sides), m.E[fe_state.MASS] / V
 
 
 def volumes_and_density(m: Model):
@@ -71,21 +71,21 @@ def run_ideal_gas(m: Model, gamma, end_time, modulus=0.0, dt_factor=0.5, outputs
     that the flow sees the gas pressure and q only. Returns (audit, p): the audit of time, kinetic and internal
     energy at ``outputs`` evenly spaced times and the end, and the element pressures at the end."""
     m.q[1] = 0.0
-    scale = float(m.q[0] * np.max(m.vr ** 2 + m.vz ** 2) + (gamma - 1.0) * m.E[fields.IE].sum() / m.E[fields.V0].sum())
+    scale = float(m.q[0] * np.max(m.vr ** 2 + m.vz ** 2) + (gamma - 1.0) * m.E[fe_state.IE].sum() / m.E[fe_state.V0].sum())
     m.q[2] = max(modulus, 1e-12 * scale)   # a zero modulus would make the pass's stable step infinite (non-finite)
-    m.ctl[fields.C_DTMIN] = 0.0
+    m.ctl[fe_state.C_DTMIN] = 0.0
     V, dW, bz, lc, rho = _geometry(m)
-    p = (gamma - 1.0) * m.E[fields.IE] / V
+    p = (gamma - 1.0) * m.E[fe_state.IE] / V
     t, dt_old, audit, tv = 0.0, None, [], _dilatation(m, V)
     marks = list(np.linspace(0.0, end_time, outputs + 1)[1:]) if outputs else []
-    q1, q2 = m.ctl[fields.C_Q1], m.ctl[fields.C_Q2]
+    q1, q2 = m.ctl[fe_state.C_Q1], m.ctl[fe_state.C_Q2]
 
     def record():
-        audit.append(dict(t=t, kinetic=m.kinetic_energy(), internal=float(m.E[fields.IE].sum())))
+        audit.append(dict(t=t, kinetic=m.kinetic_energy(), internal=float(m.E[fe_state.IE].sum())))
 
     record()
     _pass(m, 0.0)
-    _add_pressure_forces(m, p - m.E[fields.P], V, dW, bz)
+    _add_pressure_forces(m, p - m.E[fe_state.P], V, dW, bz)
     while t < end_time - 1e-15:
         c = np.sqrt(gamma * np.maximum(p, 0.0) / rho)
         Q = q2 * c + q1 * q1 * lc * np.maximum(-tv, 0.0)
@@ -94,17 +94,17 @@ def run_ideal_gas(m: Model, gamma, end_time, modulus=0.0, dt_factor=0.5, outputs
         dtv = dt if dt_old is None else 0.5 * (dt + dt_old)
         node_pass(m.span(), m.F, m.alive, m.mass, m.nstate, m.fix, m.dash, m.rowdash, (0.0, 0.0), dtv, m.V, m.rows.f)
         move(m.span(), m.X, m.V, m.nstate, dt)
-        e_old, pk_old = m.E[fields.IE].copy(), m.E[fields.P].copy()
+        e_old, pk_old = m.E[fe_state.IE].copy(), m.E[fe_state.P].copy()
         _pass(m, dt)
-        share = 0.5 * (pk_old + m.E[fields.P]) + m.E[fields.QV]
-        heat = (m.E[fields.IE] - e_old) * m.E[fields.QV] / np.where(share != 0.0, share, 1.0)
+        share = 0.5 * (pk_old + m.E[fe_state.P]) + m.E[fe_state.QV]
+        heat = (m.E[fe_state.IE] - e_old) * m.E[fe_state.QV] / np.where(share != 0.0, share, 1.0)
         V_new, dW, bz, lc, rho = _geometry(m)
         dV = V_new - V
         tv = np.log(V_new / V) / dt
         e = (e_old + heat - 0.5 * p * dV) / (1.0 + 0.5 * (gamma - 1.0) * dV / V_new)
-        m.E[fields.IE] = e
+        m.E[fe_state.IE] = e
         p, V = (gamma - 1.0) * e / V_new, V_new
-        _add_pressure_forces(m, p - m.E[fields.P], V, dW, bz)
+        _add_pressure_forces(m, p - m.E[fe_state.P], V, dW, bz)
         t += dt
         dt_old = dt
         m.t = t
@@ -130,5 +130,5 @@ def _dilatation(m: Model, V):
 def _pass(m: Model, dt):
     """The solver's element pass (geometry, viscosity and its work, forces) over every row."""
     m.element_pass(dt)
-    if (m.rows.fail >= 0).any() or (m.alive != fields.LIVE).any():
+    if (m.rows.fail >= 0).any() or (m.alive != fe_state.LIVE).any():
         raise RuntimeError(f"the gas mesh failed at t = {m.t:.4g} (an inverted element)")

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from ..geometry import Flat
-from . import closed_forms as cf, state as fields
+from . import closed_forms as cf, state as fe_state
 from .gas import run_ideal_gas, volumes_and_density
 from .constitutive import Elastic, VonMises
 from .contact import Projectile
@@ -46,7 +46,7 @@ def nodal_forces(m):
     V = np.zeros_like(m.V)
     node_pass(m.span(), m.F, m.alive, np.ones_like(m.mass), m.nstate, np.zeros_like(m.fix), m.dash, m.rowdash, (0.0, 0.0),
               1.0, V, m.rows.f.copy())
-    return -V[fields.VR], -V[fields.VZ]
+    return -V[fe_state.VR], -V[fe_state.VZ]
 
 
 def element_path(material, phases, size=0.01, D0=0.0, every_step=True):
@@ -56,14 +56,14 @@ def element_path(material, phases, size=0.01, D0=0.0, every_step=True):
     stretches lambda_r, lambda_z, pressure, equivalent stress, damage."""
     g = Grid.tensor([0.0, size], [0.0, size])
     m = Model(g, material, Controls(end_time=1.0, output_interval=1.0, max_energy_error=math.inf))
-    m.E[fields.DMG] = D0
+    m.E[fe_state.DMG] = D0
     out = {key: [] for key in ("t", "lr", "lz", "p", "seq", "D")}
 
     def record(model, t):
         E = model.E[:, 0]
-        for key, value in (("t", t), ("lr", model.r[1] / size), ("lz", (model.z[2] - model.z[0]) / size), ("p", E[fields.P]),
-                           ("seq", math.sqrt(1.5 * (E[fields.SRR] ** 2 + E[fields.SZZ] ** 2 + E[fields.STT] ** 2) + 3 * E[fields.SRZ] ** 2)),
-                           ("D", E[fields.DMG])):
+        for key, value in (("t", t), ("lr", model.r[1] / size), ("lz", (model.z[2] - model.z[0]) / size), ("p", E[fe_state.P]),
+                           ("seq", math.sqrt(1.5 * (E[fe_state.SRR] ** 2 + E[fe_state.SZZ] ** 2 + E[fe_state.STT] ** 2) + 3 * E[fe_state.SRZ] ** 2)),
+                           ("D", E[fe_state.DMG])):
             out[key].append(value)
 
     record(m, 0.0)
@@ -96,7 +96,7 @@ def taylor_run(across):
     m.vz[:] = 227.0
     res = run(m)
     face = g.nz * (g.nr + 1) + np.arange(g.nr + 1)
-    share = float(m.E[fields.V0, m.E[fields.EPSP] >= 0.2].sum() / m.E[fields.V0].sum())
+    share = float(m.E[fe_state.V0, m.E[fe_state.EPSP] >= 0.2].sum() / m.E[fe_state.V0].sum())
     return m, res, float(m.r[face].max()), float(m.z[face].max() - m.z[: g.nr + 1].min()), share
 
 
@@ -134,7 +134,7 @@ def pulse_column(length, h, x1, width, bottom, t_end, amplitude=1.0):
     m.vz[:] = amplitude * np.sin(np.pi * s) ** 2
     n = m.conn
     e = np.log((m.z[n[:, 3]] - m.z[n[:, 0]]) / (z0[n[:, 3]] - z0[n[:, 0]]))
-    m.E[fields.SZZ], m.E[fields.SRR], m.E[fields.STT], m.E[fields.P] = 4 * G / 3 * e, -2 * G / 3 * e, -2 * G / 3 * e, -Kb * e
-    m.E[fields.IE] = [cf.uniaxial_strain_energy(Kb + 4 * G / 3, V0, x) for V0, x in zip(m.E[fields.V0], e)]
+    m.E[fe_state.SZZ], m.E[fe_state.SRR], m.E[fe_state.STT], m.E[fe_state.P] = 4 * G / 3 * e, -2 * G / 3 * e, -2 * G / 3 * e, -Kb * e
+    m.E[fe_state.IE] = [cf.uniaxial_strain_energy(Kb + 4 * G / 3, V0, x) for V0, x in zip(m.E[fe_state.V0], e)]
     run(m)
     return m.vz, c

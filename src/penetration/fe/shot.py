@@ -31,7 +31,7 @@ import numpy as np
 from scipy.signal import butter, filtfilt
 
 from ..errors import ParameterError
-from . import state as fields
+from . import state as fe_state
 from .contact import Projectile
 from .mesh import MeshSpec, body_outline, build
 from .model import Controls, Model
@@ -133,7 +133,7 @@ def nose_pressure(model, projectile, nose, h):
     element of the nose surface, with the surface normal at the same distance behind the tip."""
     rc, zc = model.centroids()
     zeta = projectile.Zt - zc
-    near = (model.alive == fields.LIVE) & (zeta > -h) & (zeta < nose.length)
+    near = (model.alive == fe_state.LIVE) & (zeta > -h) & (zeta < nose.length)
     if not near.any():
         return 0.0
     zn = np.clip(zeta[near], 0.0, nose.length)
@@ -146,7 +146,7 @@ def nose_pressure(model, projectile, nose, h):
     beta = nose.angle(zn[keep])
     nr_, nz_ = np.cos(beta), np.sin(beta)
     E = model.E
-    srr, szz, srz = E[fields.SRR, e] - E[fields.P, e], E[fields.SZZ, e] - E[fields.P, e], E[fields.SRZ, e]
+    srr, szz, srz = E[fe_state.SRR, e] - E[fe_state.P, e], E[fe_state.SZZ, e] - E[fe_state.P, e], E[fe_state.SRZ, e]
     return float(np.max(-(srr * nr_ ** 2 + szz * nz_ ** 2 + 2 * srz * nr_ * nz_)))
 
 
@@ -159,7 +159,7 @@ def tunnel_eroded_share(model, radius, depth):
     rc, zc = 0.5 * (r[1:] + r[:-1]), 0.5 * (z[1:] + z[:-1])
     vol = 2 * np.pi * np.outer(np.diff(z), rc * np.diff(r))  # [row j, column i], as the elements are numbered
     inside = (zc[:, None] < depth) & (zc[:, None] > 0) & (rc[None, :] < radius)
-    eroded = np.isin(model.alive.reshape(g.nz, g.nr), (fields.ERODED, fields.ERODING))
+    eroded = np.isin(model.alive.reshape(g.nz, g.nr), (fe_state.ERODED, fe_state.ERODING))
     total = vol[inside].sum()
     return float(vol[inside & eroded].sum() / total) if total > 0 else math.nan
 

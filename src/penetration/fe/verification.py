@@ -19,7 +19,7 @@ import functools
 import math
 
 from ..checks import below as _below, run_all
-from . import state as fields
+from . import state as fe_state
 
 PROBLEMS: dict = {}
 
@@ -47,7 +47,7 @@ def _richardson(f, ratio=2.0):
 
 def _stress(m, e=slice(None)):
     """Axial stress (Pa, tension positive) of elements e: deviator less pressure and viscosity."""
-    return m.E[fields.SZZ, e] - m.E[fields.P, e] - m.E[fields.QV, e]
+    return m.E[fe_state.SZZ, e] - m.E[fe_state.P, e] - m.E[fe_state.QV, e]
 
 
 def all_checks(log=print):

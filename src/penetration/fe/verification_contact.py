@@ -11,7 +11,7 @@ import numpy as np
 from ..checks import Check, below as _below, near as _near
 from ..geometry import Flat, Ogive
 from ..hjc import HJC
-from . import chain_reference, closed_forms as cf, state as fields
+from . import chain_reference, closed_forms as cf, state as fe_state
 from .hjc_reference import homogeneous_path
 from .constitutive import Elastic
 from .contact import Projectile
@@ -262,7 +262,7 @@ def erosion_energy(v=50.0, nz=100, share=0.9):
             held.setdefault(int(e), math.log((model.z[n[e, 3]] - model.z[n[e, 0]]) / h0))
     zeta, rr = body_outline(Flat(0.02), 0.05)
     res = run(m, Projectile(zeta, rr, 1e12, 0.0, v), callback=at_erosion)
-    strain_energy = sum(cf.uniaxial_strain_energy(M, m.E[fields.V0, e], x) for e, x in held.items())
+    strain_energy = sum(cf.uniaxial_strain_energy(M, m.E[fe_state.V0, e], x) for e, x in held.items())
     row_mass = rho * math.pi * R * R * h0 / 2
     name = f"erosion energy: the struck row of a steel column eroding under a rigid face at {v:g} m/s"
     return [_near(name, "internal energy booked as eroded", res.audit[-1]["eroded"] - m.E_eroded, strain_energy, 0.005, "J",

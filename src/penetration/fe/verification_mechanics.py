@@ -11,7 +11,7 @@ from .. import cavity
 from ..checks import Check, below as _below, near as _near
 from ..geometry import Ogive
 from ..hjc import HJC
-from . import chain_reference, closed_forms as cf, state as fields
+from . import chain_reference, closed_forms as cf, state as fe_state
 from .cavity_reference import wall_stress
 from .constitutive import Elastic, VonMises
 from .contact import Projectile
@@ -270,17 +270,17 @@ def patch_test(alpha=0.3, beta=-0.2, dt=1e-6):
     mean = (2 * drr + dzz) / 3
     fr, fz = (f.reshape(g.nz + 1, g.nr + 1) for f in nodal_forces(m))
     scale = np.abs(m.F).max()
-    spread = max(np.ptp(m.E[f]) / np.abs(m.E[f]).max() for f in (fields.SRR, fields.SZZ, fields.STT, fields.P))
-    return [_near(name, "radial deviatoric stress", m.E[fields.SRR].mean(), 2 * G * (drr - mean), 1e-9, "Pa",
+    spread = max(np.ptp(m.E[f]) / np.abs(m.E[f]).max() for f in (fe_state.SRR, fe_state.SZZ, fe_state.STT, fe_state.P))
+    return [_near(name, "radial deviatoric stress", m.E[fe_state.SRR].mean(), 2 * G * (drr - mean), 1e-9, "Pa",
                   "2 G (d_rr - tr d/3) of the half-step increments (closed form; exact in the discrete algebra, to round-off)"),
-            _near(name, "pressure", m.E[fields.P].mean(), Kb * math.log(1 / ((1 + alpha * dt) ** 2 * (1 + beta * dt))), 1e-6,
+            _near(name, "pressure", m.E[fe_state.P].mean(), Kb * math.log(1 / ((1 + alpha * dt) ** 2 * (1 + beta * dt))), 1e-6,
                   "Pa", "K ln(V0/V) (closed form; the logarithm of a ratio within 1e-6 of 1 keeps ~1e-10 of it)"),
             _below(name, "largest spread of a stress component over the elements / its size", spread, 1e-6, "1",
                    "0: uniform strain (round-off)"),
             _below(name, "|s_rr - s_tt| / |s_rr| and |s_rz| / |s_rr| (largest)",
-                   max(np.abs(m.E[fields.SRR] - m.E[fields.STT]).max(), np.abs(m.E[fields.SRZ]).max()) / np.abs(m.E[fields.SRR]).max(),
+                   max(np.abs(m.E[fe_state.SRR] - m.E[fe_state.STT]).max(), np.abs(m.E[fe_state.SRZ]).max()) / np.abs(m.E[fe_state.SRR]).max(),
                    1e-12, "1", "0: e_rr = e_tt, no shear (round-off)"),
-            _below(name, "hourglass work / internal energy", m.rows.hg.sum() / m.E[fields.IE].sum(), 1e-20, "1",
+            _below(name, "hourglass work / internal energy", m.rows.hg.sum() / m.E[fe_state.IE].sum(), 1e-20, "1",
                    "0: the hourglass mode is orthogonal to linear fields (round-off)"),
             _below(name, "largest interior and axis nodal force / largest element force",
                    max(np.abs(fr[1:-1, 1:-1]).max(), np.abs(fz[1:-1, :-1]).max()) / scale, 1e-7, "1",
@@ -294,7 +294,7 @@ def rigid_translation(v=30.0):
     m = Model(distorted_grid(), HJC(), Controls(end_time=2e-4, output_interval=1e-4))
     m.vz[:] = v
     res = run(m)
-    return [_below(name, "largest |stress|", np.abs(m.E[[fields.SRR, fields.SZZ, fields.STT, fields.SRZ, fields.P]]).max(), 1e-3, "Pa",
+    return [_below(name, "largest |stress|", np.abs(m.E[[fe_state.SRR, fe_state.SZZ, fe_state.STT, fe_state.SRZ, fe_state.P]]).max(), 1e-3, "Pa",
                    "0 (round-off of the positions)"),
             _below(name, "largest change of a node's velocity / v", max(np.abs(m.vz - v).max(), np.abs(m.vr).max()) / v,
                    1e-12, "1", "0 (round-off)"),

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from .. import concrete, reference
-from ..fe import state as fields
+from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import BLOCK_RADIUS, Settings, TargetSpec, binned, lowpass, run_shot
 from ..fe.model import Controls
@@ -166,7 +166,7 @@ def fe_shot(inputs, outputs, params):
     conn = m.conn
     g = m.grid
     fields = pd.DataFrame({"r0": g.R.ravel()[conn].mean(axis=1), "z0": g.Z.ravel()[conn].mean(axis=1), "r": rc, "z": zc,
-                           "damage": m.E[fields.DMG], "eps_p": m.E[fields.EPSP], "state": m.alive})
+                           "damage": m.E[fe_state.DMG], "eps_p": m.E[fe_state.EPSP], "state": m.alive})
     core = fields.r0 < 0.6
     write_csv(hist, outputs.histories)
     write_csv(fields[core & (fields.z0 < r.depth + 1.0)], outputs.fields)

@@ -10,7 +10,7 @@ import pandas as pd
 
 from .. import concrete, reference
 from ..cavity_level import cavity_settings, cavity_trajectory, sigma_table
-from ..config import load_with, machine_name
+from ..config import element_sizes, load_with, machine_name
 from ..dop import penetration_depth
 from ..geometry import make_nose
 from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
@@ -26,6 +26,8 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
     to build it). The base concrete is concrete.configured's, as at the cavity and fe levels. A mapping without an fe
     section leaves the fe level unconfigured (the trajectory and cavity levels do not read it)."""
     refs = reference.load_reference(reference_path)
+    if "fe" in cfg and "element_size" not in cfg["fe"]["profiles"][profile]:   # the config file as written
+        element_sizes(cfg, 0.5 * refs[cfg["projectile"]["diameter"]].si)
     mesh, controls = cavity_settings(cfg["cavity"])
     fe = {"fe_settings": fe_settings(cfg["fe"], profile), "fe_target_radius": cfg["fe"]["target_radius"]} if "fe" in cfg else {}
     ctx = Context(base=concrete.configured(refs, cfg["concrete"]),

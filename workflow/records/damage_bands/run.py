@@ -24,7 +24,7 @@ import pandas as pd
 import yaml
 
 from penetration import reference
-from penetration.fe import state as fields
+from penetration.fe import state as fe_state
 from penetration.fe.shot import TargetSpec, run_shot
 from penetration.fe_level import expected_depth, with_failure_strain
 from penetration.io import load_json
@@ -55,7 +55,7 @@ m = r.model
 g = m.grid
 conn = g.connectivity()
 fields = pd.DataFrame({"r0": g.R.ravel()[conn].mean(axis=1), "z0": g.Z.ravel()[conn].mean(axis=1),
-                       "damage": m.E[fields.DMG], "state": m.alive})
+                       "damage": m.E[fe_state.DMG], "state": m.alive})
 fields = fields[(fields.r0 < 0.6) & (fields.z0 < r.depth + 0.5)]
 fields.to_csv(HERE / f"{name}_fields.csv.gz", index=False, float_format="%.6g")
 h = r.histories
