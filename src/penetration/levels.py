@@ -234,7 +234,7 @@ def fe_settings_for(shot: UserShot, ctx: Context):
     scaled = lambda x: None if x is None else x * k
     controls = dataclasses.replace(base.controls, end_time=base.controls.end_time * max(1.0, k))
     s = dataclasses.replace(base, element_size=base.element_size * k, depth_margin=base.depth_margin * k,
-                            body_length=length, bin_width=base.bin_width * k, cutoff=base.cutoff / k,
+                            body_length=length, bin_width=base.bin_width * k, cutoff_hz=base.cutoff_hz / k,
                             output_interval=base.output_interval * k, window_ahead=scaled(base.window_ahead),
                             window_tail=scaled(base.window_tail), controls=controls)
     return with_failure_strain(s, fs), k

@@ -25,7 +25,7 @@ import contextlib
 import logging
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 from scipy.signal import butter, filtfilt
@@ -77,11 +77,21 @@ class Settings:
     depth_margin: float = 1.0      # m of target beyond the expected depth (semi-infinite)
     body_length: float = 1.13      # m, projectile length (Table 2)
     bin_width: float = 2e-6        # s, deceleration bins
-    cutoff: float = 10e3           # Hz, declared low-pass cut-off of the deceleration
+    cutoff_hz: float = 10e3        # Hz, declared low-pass cut-off of the deceleration
     output_interval: float = 1e-4  # s
     window_ahead: float | None = 1.5    # m computed ahead of the tip (None: the whole domain)
     window_tail: float | None = 0.5     # m kept behind the tail (rows further behind are retired; None: kept)
     controls: Controls = field(default_factory=Controls)
+
+    @classmethod
+    def from_config(cls, cfg, profile, element_size=None):
+        """The settings of an ``fe`` config slice at a mesh profile's element size (or ``element_size``): each field
+        of the settings and of their controls that the slice names takes its value, every other keeps its default
+        here (the config schema only bounds them)."""
+        own = {f.name for f in fields(cls)} - {"element_size", "controls"}
+        controls = Controls(**{f.name: cfg[f.name] for f in fields(Controls) if f.name in cfg and f.name not in own})
+        h = element_size if element_size is not None else cfg["profiles"][profile]["element_size"]
+        return cls(element_size=h, controls=controls, **{k: cfg[k] for k in own if k in cfg})
 
 
 def mesh_spec(nose, settings: Settings, target: TargetSpec, expected_depth) -> MeshSpec:
@@ -248,7 +258,7 @@ def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), ta
                 continue
             break
     h = res.history
-    tb, dec = filtered(h["t"], h["contact_force"], mass, settings.bin_width, settings.cutoff)
+    tb, dec = filtered(h["t"], h["contact_force"], mass, settings.bin_width, settings.cutoff_hz)
     out = ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
                      {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
                       "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,

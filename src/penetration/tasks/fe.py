@@ -20,24 +20,11 @@ from .. import concrete, reference
 from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import BLOCK_RADIUS, Settings, TargetSpec, binned, lowpass, run_shot
-from ..fe.model import Controls
 from ..fe_level import calibrate_failure_strain, expected_depth, with_failure_strain
 from ..io import load_json, read_inference, task, write_csv, write_json
 from .common import calibration_row, do1_shot, scene_from_inputs
 
 FE = ("fe",)
-
-
-def fe_settings(cfg, profile, element_size=None) -> Settings:
-    """Settings of the level from the ``fe`` config slice for a mesh profile (element size overridable)."""
-    prof = cfg["profiles"][profile]
-    h = element_size if element_size is not None else prof["element_size"]
-    controls = Controls(dt_factor=cfg["dt_factor"], hourglass=cfg["hourglass"], q1=cfg["q1"], q2=cfg["q2"],
-                        end_time=cfg["end_time"], drop_free_nodes=cfg["drop_free_nodes"])
-    return Settings(element_size=h, core_calibers=cfg["core_calibers"], grading=cfg["grading"],
-                    depth_margin=cfg["depth_margin"], body_length=cfg["body_length"], bin_width=cfg["bin_width"],
-                    cutoff=cfg["cutoff_hz"], output_interval=cfg["output_interval"], window_ahead=cfg["window_ahead"],
-                    window_tail=cfg["window_tail"], controls=controls)
 
 
 def _target(fe, cfg):
@@ -94,7 +81,7 @@ def calibrate_fe_do1(inputs, outputs, params):
     refs = reference.load_reference(inputs.reference)
     cfg = params.cfg
     h = float(params.size)
-    settings = fe_settings(cfg, params.profile, h)
+    settings = Settings.from_config(cfg, params.profile, h)
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
     material = concrete.configured(refs, params.hjc)
@@ -128,7 +115,7 @@ def scene_shot(inputs, params, velocity_factor=1.0):
         raise ValueError(f"{sc.name}: velocity {v} is not among the scene's {list(sc.velocities)}")
     switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
     material = concrete.configured(refs, params.hjc, **switches)
-    settings = fe_settings(cfg, params.profile)
+    settings = Settings.from_config(cfg, params.profile)
     fs = sc.fe.get("erosion_strain")
     provenance = "none (no erosion: only the guards remove inverted elements)"
     if fs == "calibrated":
@@ -144,7 +131,7 @@ def scene_shot(inputs, params, velocity_factor=1.0):
     summary = {"scene": sc.name, "nose": params.nose, "velocity": v, "mass": sc.mass, "profile": params.profile,
                "element_size": settings.element_size, "failure_strain": fs, "failure_strain_provenance": provenance,
                "target": dataclasses.asdict(_target(sc.fe, cfg)), "material_switches": switches,
-               "expected_depth_m": expected, "cutoff_hz": settings.cutoff, **r.summary()}
+               "expected_depth_m": expected, "cutoff_hz": settings.cutoff_hz, **r.summary()}
     return summary, r, settings, sc
 
 
@@ -157,7 +144,7 @@ def fe_shot(inputs, outputs, params):
     # depth and velocity sampled on the deceleration bins (impulse-conserving bin sums of the contact force)
     tb, raw = binned(h["t"], h["contact_force"], sc.mass, settings.bin_width)
     hist = pd.DataFrame({"t": tb, "depth": np.interp(tb, h["t"], h["depth"]), "velocity": np.interp(tb, h["t"], h["velocity"]),
-                         "deceleration_raw": raw, "deceleration": lowpass(raw, settings.bin_width, settings.cutoff)})
+                         "deceleration_raw": raw, "deceleration": lowpass(raw, settings.bin_width, settings.cutoff_hz)})
     summary["peak_deceleration_by_cutoff"] = {f"{fc:g}": float(lowpass(raw, settings.bin_width, fc).max())
                                               for fc in cfg["cutoffs_hz"]}
     summary["peak_deceleration_unfiltered_bins"] = float(raw.max()) if raw.size else 0.0
@@ -227,7 +214,7 @@ def fe_nose_pressure(inputs, outputs, params):
     for name in ("double_ogive", "crh45", "crh3"):
         nose = sc.noses[name]
         end = (nose.length + 2 * nose.radius) / v + 5e-4
-        base = fe_settings(cfg, params.profile)
+        base = Settings.from_config(cfg, params.profile)
         settings = with_failure_strain(dataclasses.replace(base, controls=dataclasses.replace(base.controls, end_time=end)),
                                        cal["fs"])
         r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg),

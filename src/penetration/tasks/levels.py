@@ -12,12 +12,12 @@ from .. import concrete, reference
 from ..cavity_level import cavity_settings, cavity_trajectory, sigma_table
 from ..config import element_sizes, load_with, machine_name
 from ..dop import penetration_depth
+from ..fe.shot import Settings
 from ..geometry import make_nose
 from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
 from ..levels import Context, UserShot, output_fields, predict_rows, run
 from ..nstar import nstar
 from ..resistance import Target
-from .fe import fe_settings
 
 
 def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profile="full", strength_law=None) -> Context:
@@ -29,7 +29,7 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
     if "fe" in cfg and "element_size" not in cfg["fe"]["profiles"][profile]:   # the config file as written
         element_sizes(cfg, 0.5 * refs[cfg["projectile"]["diameter"]].si)
     mesh, controls = cavity_settings(cfg["cavity"])
-    fe = {"fe_settings": fe_settings(cfg["fe"], profile), "fe_target_radius": cfg["fe"]["target_radius"]} if "fe" in cfg else {}
+    fe = {"fe_settings": Settings.from_config(cfg["fe"], profile), "fe_target_radius": cfg["fe"]["target_radius"]} if "fe" in cfg else {}
     ctx = Context(base=concrete.configured(refs, cfg["concrete"]),
                   strength_law=strength_law or cfg["validation"]["strength_law"],
                   cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,

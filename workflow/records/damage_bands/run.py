@@ -30,7 +30,7 @@ from penetration.fe_level import expected_depth, with_failure_strain
 from penetration.io import load_json
 from penetration import concrete
 from penetration.tasks.common import scene_from_inputs
-from penetration.tasks.fe import fe_settings
+from penetration.fe.shot import Settings
 
 HERE = Path(__file__).parent
 cfg = yaml.safe_load(open("workflow/config.yaml"))
@@ -44,7 +44,7 @@ nose = sc.noses["double_ogive"]
 material = concrete.configured(refs, cfg["concrete"], **concrete.material_switches(sc.effects, sc.material, cfg["concrete"]))
 across = float(sys.argv[4]) if len(sys.argv) > 4 else 8.0
 fs = float(sys.argv[5]) if len(sys.argv) > 5 else load_json("results/fe/full/calibration_h0.00875.json")["fs"]
-settings = with_failure_strain(fe_settings(cfg["fe"], "full", nose.radius / across), fs)
+settings = with_failure_strain(Settings.from_config(cfg["fe"], "full", nose.radius / across), fs)
 settings = dataclasses.replace(settings, window_ahead=None if ahead == "none" else float(ahead))
 v = 835.0
 with contextlib.redirect_stdout(io.StringIO()):

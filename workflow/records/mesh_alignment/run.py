@@ -24,7 +24,8 @@ from penetration.fe_level import expected_depth, with_failure_strain
 from penetration.io import load_json
 from penetration import concrete
 from penetration.tasks.common import scene_from_inputs
-from penetration.tasks.fe import _target, fe_settings
+from penetration.fe.shot import Settings
+from penetration.tasks.fe import _target
 
 cfg = yaml.safe_load(open("workflow/config.yaml"))
 nose_name, v, across = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
@@ -36,7 +37,7 @@ refs = reference.load_reference(inputs.reference)
 sc = scene_from_inputs(inputs, ("fe",))
 nose = sc.noses[nose_name]
 material = concrete.configured(refs, cfg["concrete"], **concrete.material_switches(sc.effects, sc.material, cfg["concrete"]))
-settings = with_failure_strain(fe_settings(cfg["fe"], "full", nose.radius / across), fs)
+settings = with_failure_strain(Settings.from_config(cfg["fe"], "full", nose.radius / across), fs)
 with contextlib.redirect_stdout(io.StringIO()):
     r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg["fe"]),
                  expected_depth=expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), friction=sc.friction)
