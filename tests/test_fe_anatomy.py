@@ -45,7 +45,7 @@ ONCE = {
     "energy increment": ("element.py", "energy_increment", r"qv \* tv \* dt"),
     "erosion criterion": ("erosion.py", "erodes", r"eps_p >= value"),
     "node update": ("nodes.py", "new_velocity", r"dtv \* fr / m"),
-    "force gather": ("nodes.py", "gather", r"F\[k, e\]"),
+    "force gather": ("nodes.py", "_corner", r"F\[k, e\]"),
     "deviatoric predictor": ("../hjc.py", "deviatoric_trial", r"2\.0 \* G \* \(d0 - tr\)"),
     "wave speed": ("constitutive.py", "wave_speed", r"math\.sqrt\(modulus / rho\)"),
 }
@@ -70,9 +70,12 @@ def test_both_phases_of_the_element_pass_call_the_same_helpers():
         assert helper in fast and helper in scalar, helper
 
 
-def test_the_interior_and_edge_nodes_share_the_gather_and_the_update():
+def test_the_interior_and_edge_nodes_share_the_force_read_and_the_update():
+    """Interior and edge nodes read an element's force through the one _corner and update through the one _update
+    (the edges compose the reads under their existence tests: see nodes._edge_force)."""
     fns = {f.name: f for f in _functions(FE / "nodes.py")}
-    assert "gather" in _calls(fns["node_pass"]) and "gather" in _calls(fns["_edge_force"])
+    assert "_corner" in _calls(fns["gather"]) and "_corner" in _calls(fns["_edge_force"])
+    assert "gather" in _calls(fns["node_pass"]) and "_edge_force" in _calls(fns["node_pass"])
     assert "_update" in _calls(fns["node_pass"]) and "new_velocity" in _calls(fns["_update"])
 
 
