@@ -64,7 +64,7 @@ def rates(r, z, u, w):
     z1, z2, z3, z4 = z
     u1, u2, u3, u4 = u
     w1, w2, w3, w4 = w
-    ih = 1.0 / ((r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1))
+    ih = 1.0 / area2(r, z)
     br1, br2 = (z2 - z4) * ih, (z3 - z1) * ih
     bz1, bz2 = (r4 - r2) * ih, (r1 - r3) * ih
     drr = br1 * (u1 - u3) + br2 * (u2 - u4)
@@ -156,7 +156,7 @@ def row_forces(j, nr, X, V, E, F, alive, qh, dt, S):
         n4 = n1 + un + _ONE
         r1, r2, r3, r4 = corners(X, 0, n1, n4)
         z1, z2, z3, z4 = corners(X, 1, n1, n4)
-        A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
+        A2 = area2((r1, r2, r3, r4), (z1, z2, z3, z4))
         W, m1, m2, m3, m4 = moment(r1, r2, r3, r4, z1, z2, z3, z4)
         vol = TWO_PI * W
         ia = 1.0 / A2

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .state import (ACTIVE, DAMAGE, DROPPED, EFFECTIVE_STRAIN, ERODED, ERODING, FREE, MASS, PLASTIC_STRAIN,
+from .state import (ACTIVE, DAMAGE, EFFECTIVE_STRAIN, ERODED, ERODING, FREE, MASS, PLASTIC_STRAIN,
                     VOLUMETRIC_TENSION)
 
 
@@ -37,13 +37,9 @@ def retire(model):
     free = np.unique(nodes[model.count[nodes] == 0])
     free = free[model.nstate[free] == ACTIVE]
     if model.controls.drop_free_nodes:
-        m = model.mass[free]
-        model.E_eroded += 0.5 * float(np.sum(m * (model.vr[free] ** 2 + model.vz[free] ** 2)))
-        model.dropped_mass += float(m.sum())
-        model.dropped_momentum_z += float(np.sum(m * model.vz[free]))
-        model.nstate[free] = DROPPED
-        model.vr[free] = 0.0
-        model.vz[free] = 0.0
+        kinetic, mass = model.drop_nodes(free)
+        model.E_eroded += kinetic
+        model.dropped_mass += mass
     else:
         model.nstate[free] = FREE
     return just.size

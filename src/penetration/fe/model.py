@@ -63,15 +63,19 @@ class Controls:
             raise ParameterError("fe controls", "end_time, output_interval", (self.end_time, self.output_interval), "> 0 (s)")
 
 
+def _edges(r, z):
+    """The edges of a boundary line through the points (r, z): each one's surface of revolution, a unit normal
+    (n_r, n_z) and its midpoint (r, z)."""
+    dr, dz = np.diff(r), np.diff(z)
+    length = np.hypot(dr, dz)
+    area = np.pi * (r[:-1] + r[1:]) * length
+    return area, dz / length, -dr / length, 0.5 * (r[:-1] + r[1:]), 0.5 * (z[:-1] + z[1:])
+
+
 def _boundary_shares(r, z, nodes, centre):
     """Each node's share (area of revolution) of a boundary line through ``nodes`` and the line's normal there,
     pointing away from ``centre`` (r, z): (area, n_r, n_z) per node."""
-    r, z = r[nodes], z[nodes]
-    dr, dz = np.diff(r), np.diff(z)
-    length = np.hypot(dr, dz)
-    area = np.pi * (r[:-1] + r[1:]) * length          # surface of revolution of each edge
-    nr_, nz_ = dz / length, -dr / length              # a normal of each edge
-    mid_r, mid_z = 0.5 * (r[:-1] + r[1:]), 0.5 * (z[:-1] + z[1:])
+    area, nr_, nz_, mid_r, mid_z = _edges(r[nodes], z[nodes])
     flip = (mid_r - centre[0]) * nr_ + (mid_z - centre[1]) * nz_ < 0
     nr_[flip], nz_[flip] = -nr_[flip], -nz_[flip]
     a = np.zeros(nodes.size)
@@ -99,8 +103,7 @@ class Model:
         nn, ne = self.r.size, g.elements
         self.V = np.zeros((4, nn))   # velocities (rows VR, VZ) and those before the node pass (VR0, VZ0)
         self.vr, self.vz, self.vr0, self.vz0 = self.V
-        self.mat = material_of(self.material)
-        self.kind, self.q = self.mat
+        self.kind, self.q = material_of(self.material)
         rho0 = self.material.rho0
         self.E = np.zeros((N_FIELDS, ne))
         self.alive = np.full(ne, LIVE, np.uint8)
@@ -197,12 +200,7 @@ class Model:
         """Nodal forces of a pressure p (Pa) on the boundary line through ``nodes`` (in order), pushing into
         the mesh: each edge's surface of revolution times p, half to each end node."""
         nodes = np.asarray(nodes, np.int64)
-        r, z = self.r[nodes], self.z[nodes]
-        dr, dz = np.diff(r), np.diff(z)
-        length = np.hypot(dr, dz)
-        area = np.pi * (r[:-1] + r[1:]) * length
-        nr_, nz_ = dz / length, -dr / length
-        mid_r, mid_z = 0.5 * (r[:-1] + r[1:]), 0.5 * (z[:-1] + z[1:])
+        area, nr_, nz_, mid_r, mid_z = _edges(self.r[nodes], self.z[nodes])
         rc, zc = self.centroids()
         near = [int(np.argmin((rc - a) ** 2 + (zc - c) ** 2)) for a, c in zip(mid_r, mid_z)]  # the element behind each edge
         inward = np.sign((rc[near] - mid_r) * nr_ + (zc[near] - mid_z) * nz_)
@@ -237,6 +235,17 @@ class Model:
     def set_window(self, Zt):
         """Move the window of active rows with the projectile's tip (``window.follow``)."""
         window.follow(self, Zt)
+
+    def drop_nodes(self, nodes):
+        """Take ``nodes`` out of the model (state DROPPED, velocity 0), booking their axial momentum; returns their
+        kinetic energy and mass, for the caller to book where they went."""
+        m = self.mass[nodes]
+        kinetic = 0.5 * float(np.sum(m * (self.vr[nodes] ** 2 + self.vz[nodes] ** 2)))
+        self.dropped_momentum_z += float(np.sum(m * self.vz[nodes]))
+        self.nstate[nodes] = DROPPED
+        self.vr[nodes] = 0.0
+        self.vz[nodes] = 0.0
+        return kinetic, float(m.sum())
 
     def retire_eroded(self):
         """Remove the elements eroded in the last pass (``erosion.retire``)."""

@@ -67,12 +67,6 @@ def _retire_rows(m, j0):
     m.window_mass += float(m.E[MASS, live].sum())
     m.alive[live] = RETIRED
     nodes = np.arange(m.j0 * (g.nr + 1), j0 * (g.nr + 1))
-    nodes = nodes[m.nstate[nodes] < DROPPED]
-    mass = m.mass[nodes]
-    m.E_window += 0.5 * float(np.sum(mass * (m.vr[nodes] ** 2 + m.vz[nodes] ** 2)))
-    m.dropped_momentum_z += float(np.sum(mass * m.vz[nodes]))
-    m.nstate[nodes] = DROPPED
-    m.vr[nodes] = 0.0
-    m.vz[nodes] = 0.0
+    m.E_window += m.drop_nodes(nodes[m.nstate[nodes] < DROPPED])[0]
     m.rows.dt[m.j0:j0] = NO_STEP
     m.j0 = j0
