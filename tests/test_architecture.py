@@ -25,20 +25,7 @@ SIMULATION = ["trajectory", "cavity", "cavity_level", "fe", "fe_level"]
 TABLES = ["fe_studies"]
 
 # known violations: the tests run and must fail until the code is fixed (strict), then the mark goes
-DOP_IN_FE_LEVEL = pytest.mark.xfail(strict=True, reason="fe_level.expected_depth sizes the FE domain with Eq 9 "
-                                    "(dop.penetration_depth); its callers (tasks/fe.py, levels.py) are to pass the "
-                                    "estimate in")
-KNOWN = {
-    "pure": {"fe_level": pytest.mark.xfail(strict=True, reason="fe_level.estimate_cost reads the free memory "
-                                           "(os.sysconf) inside the FE level's module")},
-    "quiet": {"fe": pytest.mark.xfail(strict=True, reason="fe/verification.all_checks logs to print by default; the "
-                                      "FE package reports through logging (issue 35 item 1)"),
-              "fe_level": pytest.mark.xfail(strict=True, reason="fe_level.calibrate_failure_strain logs to print by "
-                                            "default"),
-              "checks": pytest.mark.xfail(strict=True, reason="checks.run_all logs to print by default"),
-              "cavity_verification": pytest.mark.xfail(strict=True, reason="cavity_verification.all_checks logs to "
-                                                       "print by default")},
-}
+KNOWN = {"pure": {}, "quiet": {}}
 
 
 def _marked(kind, modules):
@@ -124,7 +111,7 @@ def test_result_tables_are_pure(module):
     assert _prints(module) == []
 
 
-@pytest.mark.parametrize("level", [pytest.param(m, marks=DOP_IN_FE_LEVEL) if m == "fe_level" else m for m in SIMULATION])
+@pytest.mark.parametrize("level", SIMULATION)
 def test_dop_and_simulation_levels_are_independent(level):
     """The closed form and the simulation levels check each other, so neither imports the other."""
     assert "dop" not in imports(level)

@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from penetration.config import ConfigError, check_config
-from penetration.scenes import SceneError, read_scene
+from penetration.scenes import SceneError, read_scene, scene_data
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE_SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
@@ -223,7 +223,7 @@ def test_unknown_precision_class_is_noticed_at_load(monkeypatch, spec, where):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
 
 
-FE_BASE = yaml.safe_load((ROOT / "workflow/scenes/fe/table3.yaml").read_text())
+FE_BASE = scene_data(ROOT / "workflow/scenes/fe/table3.yaml")  # the fe scene of Table 3, the case merged in
 
 
 @pytest.mark.parametrize("changes,needle", [

@@ -13,10 +13,10 @@ def fake_runs(monkeypatch, calls, stop_after=None):
     trials), counting the runs; the run after ``stop_after`` raises, as a killed job would stop."""
     import math
 
-    def run_shot(nose, mass, velocity, material, settings, target, **kw):
+    def run_shot(spec, **kw):
         if stop_after is not None and len(calls) >= stop_after:
             raise KeyboardInterrupt
-        fs = settings.controls.erosion_value
+        fs = spec.settings.controls.erosion_value
         calls.append(fs)
         u = math.log(fs / 1.0263)
         depth = 5.1 - 0.8 * (u + 0.6 * u ** 3)
@@ -27,9 +27,9 @@ def fake_runs(monkeypatch, calls, stop_after=None):
 
 
 def calibrate(memo):
-    from penetration.fe.shot import Settings
-    return fe_level.calibrate_failure_strain(None, 81.1, 835.0, 5.1, None, Settings(), bracket=(0.3, 3.0), tol_m=1e-4,
-                                             expected_depth=5.0, log=None, memo=memo)
+    from penetration.fe.shot import RunSpec
+    return fe_level.calibrate_failure_strain(RunSpec(None, 81.1, 835.0, None), 5.1, bracket=(0.3, 3.0), tol_m=1e-4,
+                                             memo=memo)
 
 
 def test_an_interrupted_calibration_runs_no_finished_trial_again(monkeypatch, tmp_path):

@@ -127,7 +127,7 @@ def test_failure_strain_calibration_finds_the_root_of_a_noisy_decreasing_depth(m
     """The bracketing secant in log fs stops within tol of the target despite a 0.3 % noise (a stand-in for the FE
     run: depth = 5.1 (1.02/fs)^0.8 (1 + noise)); a bracket that misses the target is refused."""
     from penetration import fe_level
-    from penetration.fe.shot import Settings
+    from penetration.fe.shot import RunSpec
     rng = np.random.default_rng(1)
 
     class Run:
@@ -138,13 +138,14 @@ def test_failure_strain_calibration_finds_the_root_of_a_noisy_decreasing_depth(m
         def summary(self):
             return {"energy_error_max": 0.0}
 
-    monkeypatch.setattr(fe_level, "run_shot", lambda nose, m, v, mat, settings, *a, **k: Run(settings.controls.erosion_value))
-    fit = fe_level.calibrate_failure_strain(None, 81.1, 835.0, 5.1, None, Settings(), log=None, tol_m=0.02)
+    monkeypatch.setattr(fe_level, "run_shot", lambda spec, **k: Run(spec.settings.controls.erosion_value))
+    spec = RunSpec(None, 81.1, 835.0, None)
+    fit = fe_level.calibrate_failure_strain(spec, 5.1, tol_m=0.02)
     assert fit["converged"] and abs(fit["residual_m"]) <= 0.02
     assert fit["fs"] == pytest.approx(1.02, rel=0.02)
     assert len(fit["runs"]) <= 10
     with pytest.raises(ValueError, match="no failure strain"):
-        fe_level.calibrate_failure_strain(None, 81.1, 835.0, 5.1, None, Settings(), bracket=(1.5, 3.0), log=None)
+        fe_level.calibrate_failure_strain(spec, 5.1, bracket=(1.5, 3.0))
 
 
 def test_node_pass_without_dashpot_arithmetic_gives_the_same_velocities():

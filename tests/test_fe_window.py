@@ -5,8 +5,7 @@ import pandas as pd
 import pytest
 from scipy import stats
 
-from penetration.fe.shot import Settings, TargetSpec, run_shot
-from penetration.fe_level import with_failure_strain
+from penetration.fe.shot import RunSpec, Settings, run_shot
 from penetration.geometry import Ogive
 from penetration.hjc import HJC
 from penetration.tasks.fe_window import window_summary
@@ -14,10 +13,10 @@ from penetration.tasks.fe_window import window_summary
 
 def _depths(window, h=0.07 / 3, v=835.0, members=2, step=1e-9):
     base = Settings(element_size=h) if window else Settings(element_size=h, window_ahead=None, window_tail=None)
-    s = with_failure_strain(base, 0.75)
+    s = base.with_failure_strain(0.75)
     out = []
     for k in range(members):
-        r = run_shot(Ogive(4.5, 0.07), 81.1, v * (1 + k * step), HJC(), s, TargetSpec(), expected_depth=5.0)
+        r = run_shot(RunSpec(Ogive(4.5, 0.07), 81.1, v * (1 + k * step), HJC(), s, expected_depth=5.0))
         assert r.status == "rest"
         out.append(r.depth)
     return out

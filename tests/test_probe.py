@@ -322,11 +322,12 @@ def test_fe_mesh_estimate_counts_the_meshes_the_level_builds():
     """The config's element count is that of fe.mesh.build for the same mesh (within the columns the kernels'
     vector width adds)."""
     from penetration.config import fe_mesh_elements, read_yaml
-    from penetration.fe.mesh import MeshSpec, build
+    from penetration.fe.mesh import build
+    from penetration.fe.shot import Settings, TargetSpec, mesh_spec
+    from penetration.geometry import Ogive
     fe = read_yaml(ROOT / "workflow/config.yaml")["fe"]
     for h in (0.0233333333333, 0.00875, 0.003):
-        spec = MeshSpec(h, fe["core_calibers"] * 0.07, 5.1 + 0.5 * fe["depth_margin"], fe["target_radius"],
-                        5.1 + fe["depth_margin"], fe["grading"])
+        spec = mesh_spec(Ogive(3.0, 0.07), Settings.from_config(fe, None, h), TargetSpec(radius=fe["target_radius"]), 5.1)
         built = build(spec).elements
         assert 0.9 * built <= fe_mesh_elements(h, fe, 0.07, 5.1) <= built
 

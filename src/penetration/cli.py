@@ -301,6 +301,7 @@ def _predict_trust(args, good):
 
 def _context(args):
     """The levels' context from --root, with the command line's calibration overrides (checked)."""
+    from .config import available_memory
     from .tasks.levels import context_from_pipeline
     root = Path(args.root)
     if not (root / "workflow/config.yaml").is_file():
@@ -309,6 +310,7 @@ def _context(args):
     if not args.max_minutes > 0:
         raise ParameterError("argument", "--max-minutes", args.max_minutes, "--max-minutes > 0")
     ctx.fe_max_seconds = 60.0 * args.max_minutes
+    ctx.fe_available_memory = available_memory()
     for name, attr in (("--strength-scale", "strength_scale"), ("--failure-strain", "failure_strain")):
         value = getattr(args, attr)
         if value is not None:

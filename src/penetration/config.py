@@ -240,6 +240,14 @@ def machine_memory() -> int:
     return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
 
 
+def available_memory() -> float:
+    """Bytes of memory available now (os.sysconf; infinite where the system does not say)."""
+    try:
+        return float(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (ValueError, OSError, AttributeError):
+        return math.inf
+
+
 def _paths(cfg, dotted):
     """(dotted path, value) at a dotted path with "*" (every key of a mapping) and "[]" (every item of a list);
     a missing key gives nothing."""
@@ -269,15 +277,21 @@ def _graded_cells(span, h, ratio):
 def fe_mesh_elements(h, fe, radius, depth) -> int:
     """Elements of the FE level's semi-infinite target meshed at element size ``h`` for a shot of shank radius
     ``radius`` expected to reach ``depth`` (fe.shot.model_for with fe.mesh.graded): a uniform core of
-    fe.core_calibers radii and depth + depth_margin/2, graded by fe.grading out to fe.target_radius and
-    depth + depth_margin."""
-    q = fe["grading"]
-    core_r, core_d = fe["core_calibers"] * radius, depth + 0.5 * fe["depth_margin"]
+    core_calibers radii and depth + depth_margin/2, graded by ``grading`` out to fe.target_radius and
+    depth + depth_margin (the level's settings of the ``fe`` slice, fe.spec.Settings.from_config)."""
+    s = _fe_settings(fe, h)
+    q = s.grading
+    core_r, core_d = s.core_calibers * radius, depth + 0.5 * s.depth_margin
     nr = math.ceil(core_r / h)
     nz = math.ceil(core_d / h)
     nr += _graded_cells(fe["target_radius"] - nr * h, h, q)
-    nz += _graded_cells(depth + fe["depth_margin"] - nz * h, h, q)
+    nz += _graded_cells(depth + s.depth_margin - nz * h, h, q)
     return nr * nz
+
+
+def _fe_settings(fe, h):
+    from .fe.spec import Settings   # light: no solver code
+    return Settings.from_config(fe, None, h)
 
 
 def _ordered_problems(cfg, source):
@@ -336,6 +350,7 @@ def _size_problems(cfg, source, refs):
              + _paths(cfg, "fe_convergence.profiles.*") + _paths(cfg, "fe_band.bands.*.*"))
     for where, across in sizes:
         h = element_size(radius, across)
+        s = _fe_settings(fe, h)
         n = fe_mesh_elements(h, fe, radius, depth)
         need = n * FE_BYTES_PER_ELEMENT
         if need > ram:
@@ -344,10 +359,10 @@ def _size_problems(cfg, source, refs):
                 mid = math.sqrt(lo * hi)
                 lo, hi = (lo, mid) if fe_mesh_elements(mid, fe, radius, depth) * FE_BYTES_PER_ELEMENT <= ram else (mid, hi)
             bad.append(f"{source}: {where}: {across:g} elements across the shank radius ({h:.3g} m elements) is not allowed: the DO1 calibration shot's mesh (every element size "
-                       f"is calibrated on DO1) would have about {n:.3g} elements (a core of {fe['core_calibers']:g} "
-                       f"shank radii of {radius:g} m and {depth + 0.5 * fe['depth_margin']:g} m deep, graded by "
-                       f"{fe['grading']:g} to the {fe['target_radius']:g} m target radius and "
-                       f"{depth + fe['depth_margin']:g} m), about {need / 1e9:.3g} GB at {FE_BYTES_PER_ELEMENT} bytes "
+                       f"is calibrated on DO1) would have about {n:.3g} elements (a core of {s.core_calibers:g} "
+                       f"shank radii of {radius:g} m and {depth + 0.5 * s.depth_margin:g} m deep, graded by "
+                       f"{s.grading:g} to the {fe['target_radius']:g} m target radius and "
+                       f"{depth + s.depth_margin:g} m), about {need / 1e9:.3g} GB at {FE_BYTES_PER_ELEMENT} bytes "
                        f"per element, beyond this machine's {ram / 1e9:.3g} GB of memory (os.sysconf); allowed: at "
                        f"most {radius / hi:.3g} elements across (elements of at least {hi:.3g} m)")
     cav = cfg["cavity"]

@@ -1,4 +1,5 @@
-"""The finite-element level for shots: the calibration of the erosion strain on a measured depth.
+"""The finite-element level for shots: a scene's run spec, the calibration of the erosion strain on a measured
+depth, and the cost of a shot before it runs.
 
 The failure strain fs (erosion on the equivalent plastic strain) is a
 numerical parameter bound to the mesh: it is calibrated per element size on
@@ -8,36 +9,64 @@ discrete erosion is chaotic: a 1e-12 change of the striking velocity moved
 the coarse DO1 depth by 0.2 %), so the root is sought in log fs by a
 bracketing secant (Illinois) that stops when the depth is within ``tol_m`` of
 the target.
+
+The depth that sizes a semi-infinite domain is the caller's (``shots.expected_depth``: the closed form, which this
+level never imports, so that the two check each other).
 """
 from __future__ import annotations
 
 import dataclasses
 import math
 
-from .dop import penetration_depth
-from .fe.shot import Settings, TargetSpec, run_shot
-from .nstar import nstar
-from .resistance import Target, strength_factor
+import numpy as np
+
+from . import concrete
+from .errors import ParameterError
+from .fe.shot import RunSpec, Settings, TargetSpec, progress_to, run_shot
 
 
-DEPTH_ALLOWANCE = 1.6  # the stated S = 72 fc^-0.5 gives 0.64-0.7 of the depths the FE level reaches
+def _check_table1_target(scene, refs):
+    for name in ("rho", "fc"):
+        want = refs[f"table1.{name}"].si
+        if not math.isclose(getattr(scene.target, name), want, rel_tol=1e-12):
+            raise ValueError(f"{scene.name}: target.{name} = {getattr(scene.target, name)}; allowed at level fe: "
+                             f"{want} (the HJC set of Table 1 exists for this concrete only)")
 
 
-def expected_depth(nose, mass, velocity, fc, rho):
-    """Domain depth estimate for a semi-infinite target: DEPTH_ALLOWANCE times Eq 9 with Li and Chen's S (a run
-    that reaches the bottom is repeated on a domain twice as deep)."""
-    return DEPTH_ALLOWANCE * float(penetration_depth(mass, nose.radius, nstar(nose),
-                                                     Target(rho, fc, strength_factor(fc, "li_chen")), velocity))
+def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expected_depth, calibration=None,
+               velocity_factor=1.0):
+    """The run spec of one shot of an FE scene (``nose``: the name of one of its noses, at one of its ``velocity``
+    values times ``velocity_factor``), built once: the scene's concrete (concrete.configured with the scene's
+    effects), the profile's settings (Settings.from_config of the ``fe`` config slice), the scene's target and, where
+    the scene asks for the calibrated erosion strain, the DO1 ``calibration`` (its JSON record, at the profile's
+    element size). Returns (spec, notes) with notes the failure strain, its provenance and the material switches."""
+    _check_table1_target(scene, refs)
+    v = float(velocity)
+    if not np.any(np.isclose(scene.velocities, v)):
+        raise ValueError(f"{scene.name}: velocity {v} is not among the scene's {list(scene.velocities)}")
+    switches = concrete.material_switches(scene.effects, scene.material, concrete_cfg)
+    material = concrete.configured(refs, concrete_cfg, **switches)
+    settings = Settings.from_config(fe_cfg, profile)
+    fs = scene.fe.get("erosion_strain")
+    provenance = "none (no erosion: only the guards remove inverted elements)"
+    if fs == "calibrated":
+        if calibration is None:
+            raise ValueError(f"{scene.name}: erosion_strain 'calibrated' needs the DO1 calibration at the {profile} mesh")
+        if not math.isclose(calibration["element_size"], settings.element_size):
+            raise ValueError(f"calibration at element size {calibration['element_size']} m used on a "
+                             f"{settings.element_size} m mesh")
+        fs, provenance = calibration["fs"], f"calibrated on DO1 at element size {calibration['element_size']} m"
+    if fs is not None:
+        settings = settings.with_failure_strain(float(fs))
+    target = TargetSpec.from_scene(scene.fe, fe_cfg["target_radius"], fe_cfg["block_depth"])
+    spec = RunSpec(scene.noses[nose], scene.mass, v * velocity_factor, material, settings, target, expected_depth,
+                   scene.friction)
+    return spec, {"failure_strain": fs, "failure_strain_provenance": provenance, "material_switches": switches}
 
 
-def with_failure_strain(settings: Settings, fs):
-    return dataclasses.replace(settings, controls=dataclasses.replace(settings.controls, erosion="plastic_strain",
-                                                                       erosion_value=fs))
-
-
-def calibrate_failure_strain(nose, mass, velocity, depth, material, settings: Settings, target: TargetSpec = TargetSpec(),
-                             bracket=(0.2, 3.0), tol_m=0.02, max_runs=14, expected_depth=None, log=print, memo=None):
-    """fs making the FE depth of the shot equal ``depth``; returns fs, the runs and the residual.
+def calibrate_failure_strain(spec: RunSpec, depth, bracket=(0.2, 3.0), tol_m=0.02, max_runs=14, log=None, memo=None):
+    """fs making the FE depth of the shot ``spec`` equal ``depth``; returns fs, the runs and the residual. ``log``:
+    a callable told each trial and the solver's progress (None: quiet).
 
     ``memo``: a mapping of finished trials (fs -> the run's record) kept by the caller across interruptions; a trial
     found there is not run again (the iteration is deterministic, so an interrupted calibration resumes where it
@@ -53,8 +82,8 @@ def calibrate_failure_strain(nose, mass, velocity, depth, material, settings: Se
                 log(f"fs {fs:.5f}: depth {rec['depth_m']:.4f} m ({rec['status']}; a finished trial, not run again)")
         else:
             # one attempt: a run that reaches the bottom of the domain is deeper than the target already
-            r = run_shot(nose, mass, velocity, material, with_failure_strain(settings, fs), target,
-                         expected_depth=expected_depth or 1.3 * depth, log=log, max_attempts=1)
+            with progress_to(log):
+                r = run_shot(spec.with_failure_strain(fs), max_attempts=1)
             sm = r.summary()
             rec = {"fs": fs, "depth_m": r.depth, "wall_time_s": r.wall_time, "status": r.status,
                    "energy_error_max": sm["energy_error_max"], "peak_deceleration_m_s2": r.peak_deceleration,
@@ -93,7 +122,7 @@ def calibrate_failure_strain(nose, mass, velocity, depth, material, settings: Se
 
 # ------------------------------------------------------------------ cost before a run
 BYTES_PER_ELEMENT = 400        # the solver's element and node arrays, about (14 + 8) floats an element and 12 a node
-DEPTH_FROM_ALLOWANCE = 0.875   # the FE depth is about 1.4 Eq 9 depths: 1.4 / DEPTH_ALLOWANCE of the domain's estimate
+DEPTH_FROM_ALLOWANCE = 0.875   # the FE depth is about 1.4 Eq 9 depths: 1.4 / shots.DEPTH_ALLOWANCE of the domain's estimate
 TIME_FACTOR = 2.1              # time to rest over depth / striking velocity (Forrestal's model: 2.0-2.2 over the ladder)
 LOAD_FACTOR = 1.0              # an element-step over the run against one of the probe's: 1.3 overestimated three shots by
                                # 1.32-1.84 times (workflow/benchmarks/fe_estimate.py on a 2-core EPYC)
@@ -118,20 +147,11 @@ class CostEstimate:
                 f"machine ({per}; {self.memory_bytes / 2**20:.0f} MiB)")
 
 
-def _available_memory():
-    import os
-    try:
-        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (ValueError, OSError, AttributeError):
-        return math.inf
-
-
-def estimate_cost(nose, mass, velocity, material, settings: Settings, target: TargetSpec, expected_depth,
-                  max_seconds=math.inf, probe_time=4e-5) -> CostEstimate:
+def estimate_cost(spec: RunSpec, max_seconds=math.inf, probe_time=4e-5, available_memory=math.inf) -> CostEstimate:
     """Elements x steps of a shot from its mesh and expected depth, and the time they take on this machine.
 
     The mesh's element count comes from its node coordinates alone (no arrays are allocated); a shot whose mesh
-    would not fit in the memory available now raises ParameterError. Otherwise the model is built and advanced for
+    would not fit in ``available_memory`` (bytes; the caller reads what is free now) raises ParameterError. Otherwise the model is built and advanced for
     ``probe_time`` of simulated time three times (the first warms the kernels): the faster of the other two gives the
     wall time of an element-step now, on this machine, busy or not, and the last the stable time step. The time to rest is TIME_FACTOR times the
     expected depth (DEPTH_FROM_ALLOWANCE of the domain's) over the striking velocity; the elements computed per step
@@ -142,13 +162,14 @@ def estimate_cost(nose, mass, velocity, material, settings: Settings, target: Ta
     from .fe.shot import body_outline, mesh_spec, model_for
     from .fe.contact import Projectile
     from .fe.solver import run
-    from .errors import ParameterError
+    nose, settings, target, material = spec.nose, spec.settings, spec.target, spec.material
+    expected_depth, velocity = spec.expected_depth, spec.velocity
     h = settings.element_size
     r, z = node_lines(mesh_spec(nose, settings, target, expected_depth))
     nr, nz = len(r) - 1, len(z) - 1
     elements = nr * nz
     memory = BYTES_PER_ELEMENT * elements
-    available = _available_memory()
+    available = available_memory
     if memory > 0.8 * available:
         raise ParameterError("fe shot", "mesh", f"{elements} elements",
                              f"a mesh within 80 % of the memory available now ({available / 2**30:.1f} GiB at about "
@@ -170,7 +191,7 @@ def estimate_cost(nose, mass, velocity, material, settings: Settings, target: Ta
         return CostEstimate(elements, window, int(t_rest / dt_guess), t_rest, 0.0, bound, memory)
     model = model_for(nose, settings, target, material, expected_depth)
     zeta, rho = body_outline(nose, settings.body_length)
-    proj = Projectile(zeta, rho, mass, 0.0, velocity, 0.0)
+    proj = Projectile(zeta, rho, spec.mass, 0.0, velocity, spec.friction)
     per = []
     for chunk in range(3):
         model.controls = dataclasses.replace(model.controls, end_time=model.t + probe_time, output_interval=probe_time)

@@ -41,8 +41,8 @@ from .geometry import NOSES, Flat, Ogive, make_nose
 from .hjc import HJC
 from .nstar import nstar
 from .resistance import STRENGTH_LAWS, Target, crater_coefficient, crater_velocity_squared, strength_factor
-from .shots import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, field_value, row_problem, shot_nstar,
-                    shot_values)
+from .shots import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, expected_depth, field_value, row_problem,
+                    shot_nstar, shot_values)
 from .shots import output_fields as shots_output_fields, predict_rows as shots_predict_rows
 from .trajectory import assemble, integrate
 
@@ -146,6 +146,7 @@ class Context:
     table_builds: int = 0
     fe_max_seconds: float = math.inf        # an fe shot estimated to cost more is refused before it runs
     fe_profile: str = "full"                # the mesh profile of the fe calibration (named in messages)
+    fe_available_memory: float = math.inf   # bytes an fe shot may use (the caller reads what is free now)
 
     def __post_init__(self):
         if self.strength_law not in STRENGTH_LAWS:
@@ -224,7 +225,6 @@ def _cavity(shot, ctx):
 def fe_settings_for(shot: UserShot, ctx: Context):
     """The calibration mesh and run settings scaled to the shot's radius (same elements across the radius)."""
     from .fe.shot import Settings
-    from .fe_level import with_failure_strain
     rec = f"figures/fe/{ctx.fe_profile}/calibration_fe_do1.csv"
     fs = _need(ctx.failure_strain, "failure_strain", f"the fe level's DO1 calibration (its committed record {rec}: "
                f"snakemake -c2 {rec}; or give a failure strain: --failure-strain)")
@@ -237,30 +237,39 @@ def fe_settings_for(shot: UserShot, ctx: Context):
                             body_length=length, bin_width=base.bin_width * k, cutoff_hz=base.cutoff_hz / k,
                             output_interval=base.output_interval * k, window_ahead=scaled(base.window_ahead),
                             window_tail=scaled(base.window_tail), controls=controls)
-    return with_failure_strain(s, fs), k
+    return s.with_failure_strain(fs), k
+
+
+def fe_spec(shot: UserShot, ctx: Context):
+    """The fe level's run spec of a user's shot, built once: the calibration mesh and settings scaled to the shot's
+    radius (fe_settings_for), the shot's concrete (fe_material), a semi-infinite target of the context's radius
+    scaled likewise, and the domain's depth from the closed form (shots.expected_depth). Returns (spec, scale)."""
+    from .fe.shot import RunSpec, TargetSpec
+    settings, k = fe_settings_for(shot, ctx)
+    return RunSpec(shot.nose, shot.mass, shot.velocity, fe_material(shot, ctx), settings,
+                   TargetSpec("semi_infinite", ctx.fe_target_radius * k),
+                   expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)), k
 
 
 def _fe(shot, ctx, log=None):
     """The fe level: its cost is estimated first (fe_level.estimate_cost, told to ``log``), and a shot estimated to
     cost more than ctx.fe_max_seconds is refused before it runs (no estimate, which probes the kernels for about a
     second, when there is neither a limit nor a log to tell it to)."""
-    from .fe.shot import TargetSpec, run_shot
-    from .fe_level import estimate_cost, expected_depth
-    settings, k = fe_settings_for(shot, ctx)
-    material = fe_material(shot, ctx)
-    target = TargetSpec("semi_infinite", ctx.fe_target_radius * k)
-    expected = expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)
+    from .fe.shot import progress_to, run_shot
+    from .fe_level import estimate_cost
+    spec, _ = fe_spec(shot, ctx)
+    settings = spec.settings
     est = None
     if log is not None or math.isfinite(ctx.fe_max_seconds):
-        est = estimate_cost(shot.nose, shot.mass, shot.velocity, material, settings, target, expected,
-                            max_seconds=ctx.fe_max_seconds)
+        est = estimate_cost(spec, max_seconds=ctx.fe_max_seconds, available_memory=ctx.fe_available_memory)
         if log is not None:
             log(est.describe())
     if est is not None and est.seconds > ctx.fe_max_seconds:
         raise ParameterError("fe shot", "estimated cost", f"{est.seconds / 60:.3g} min",
                              f"at most --max-minutes {ctx.fe_max_seconds / 60:g} ({est.describe()}); raise "
                              "--max-minutes to run it")
-    r = run_shot(shot.nose, shot.mass, shot.velocity, material, settings, target, expected_depth=expected, log=log)
+    with progress_to(log):
+        r = run_shot(spec)
     s = r.summary()
     notes = (f"HJC scaled to fc = {shot.fc / 1e6:.4g} MPa, failure strain {ctx.failure_strain:.6g} "
              f"({ctx.failure_strain_source}), {shot.nose.radius / settings.element_size:.3g} elements across the radius, "

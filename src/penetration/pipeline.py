@@ -123,6 +123,17 @@ def run(rule, task_file, inputs, outputs, params):
     return fn(inputs, outputs, params)
 
 
+def scene_input(path) -> dict:
+    """A rule's scene inputs: ``scene``, the scene file, and ``scene_bases``, the files it extends (scenes.scene_files),
+    so that a change to the paper's case reruns every level's scene of it. ``path`` may hold wildcards
+    (``workflow/scenes/fe/{scene}.yaml``) or be a function of them."""
+    from .scenes import scene_files
+    if callable(path) or "{" in path:
+        get = path if callable(path) else (lambda w: path.format(**dict(w.items())))
+        return {"scene": get, "scene_bases": lambda w: scene_files(get(w))[1:]}
+    return {"scene": path, "scene_bases": scene_files(path)[1:]}
+
+
 def load_studies(folder, schema_path) -> dict:
     """Study grids by name: every ``folder/NAME.yaml``, each checked against the schema's definition NAME."""
     schema = json.loads(Path(schema_path).read_text())

@@ -4,10 +4,18 @@ A scene is validated against ``workflow/schemas/scene.schema.json`` when it
 is loaded, then resolved: inferred noses and radii, and calibrated strength
 factors, are read from the result files of the rules that made them, so a
 scene never carries a number from the paper that is not its own input.
+
+A paper case is written once (``workflow/scenes/table3.yaml``); a level's
+scene of the same case (``workflow/scenes/cavity/table3.yaml``,
+``workflow/scenes/fe/table3.yaml``) names it with ``extends: ../table3.yaml``
+and writes only what the level changes, as a JSON merge patch (RFC 7386) on
+it: a mapping merges key by key, any other value replaces, ``null`` removes
+the key. The merged scene is what is validated and run.
 """
 from __future__ import annotations
 
 import json
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -78,11 +86,59 @@ def scene_names(folder) -> list:
     return [check_scene_name(path) for path in sorted(Path(folder).glob("*.yaml"))]
 
 
+EXTENDS = "extends"
+MAX_EXTENDS = 8
+
+
+def merge_patch(target, patch):
+    """``patch`` applied to ``target`` as a JSON merge patch (RFC 7386): mappings merge key by key (a key keeps its
+    place in ``target``; new keys follow), ``None`` removes a key, any other value replaces."""
+    if not isinstance(patch, dict):
+        return patch
+    out = dict(target) if isinstance(target, dict) else {}
+    for key, value in patch.items():
+        if value is None:
+            out.pop(key, None)
+        else:
+            out[key] = merge_patch(out.get(key), value)
+    return out
+
+
+def scene_files(path) -> list:
+    """The files a scene is made of: the file itself, then the file it extends, and so on (a rule's inputs, so that
+    a change to the paper's case reruns every level's scene of it)."""
+    files = [Path(path)]
+    while True:
+        data = config.read_yaml(files[-1]) or {}
+        base = data.get(EXTENDS) if isinstance(data, dict) else None
+        if base is None:
+            return [str(f) for f in files]
+        if not isinstance(base, str):
+            raise SceneError(f"{files[-1]}: {EXTENDS}: {base!r}; allowed: the path of a scene file, relative to this one")
+        nxt = Path(os.path.normpath(files[-1].parent / base))
+        if not nxt.is_file():
+            raise SceneError(f"{files[-1]}: {EXTENDS}: {base!r}: no such file ({nxt})")
+        if nxt.resolve() in [f.resolve() for f in files] or len(files) > MAX_EXTENDS:
+            raise SceneError(f"{files[-1]}: {EXTENDS}: {base!r} makes a cycle or a chain longer than {MAX_EXTENDS}: "
+                             f"{' -> '.join(str(f) for f in files + [nxt])}")
+        files.append(nxt)
+
+
+def scene_data(path) -> dict:
+    """A scene file's mapping, the files it extends merged in (merge_patch, the base first); not yet validated."""
+    merged = {}
+    for f in reversed(scene_files(path)):
+        data = config.read_yaml(f) or {}
+        merged = merge_patch(merged, {k: v for k, v in data.items() if k != EXTENDS})
+    return merged
+
+
 def read_scene(path, schema_path, levels=None):
-    """The scene file as a validated dict; ``levels``: the levels the reading rule runs (others are refused). A file
-    whose name the scene wildcard cannot match is refused (check_scene_name)."""
+    """The scene file as a validated dict (the scenes it extends merged in: scene_data); ``levels``: the levels the
+    reading rule runs (others are refused). A file whose name the scene wildcard cannot match is refused
+    (check_scene_name)."""
     check_scene_name(path)
-    data = config.load(path, schema_path)
+    data = config.validate(scene_data(path), json.loads(Path(schema_path).read_text()), str(path))
     if levels is not None and data["level"] not in levels:
         raise SceneError(f"{path}: level: {data['level']!r} is not run by this rule; allowed: {list(levels)}"
                          + ({"cavity": " (cavity scenes live in workflow/scenes/cavity/)", "fe": " (fe scenes live in workflow/scenes/fe/)"}.get(data["level"], "")))

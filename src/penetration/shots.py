@@ -144,6 +144,16 @@ def predicted_depth(row, law="li_chen") -> float:
     return depth
 
 
+DEPTH_ALLOWANCE = 1.6  # the stated S = 72 fc^-0.5 gives 0.64-0.7 of the depths the FE level reaches
+
+
+def expected_depth(nose, mass, velocity, fc, rho) -> float:
+    """The depth (m) that sizes a simulation's semi-infinite domain: DEPTH_ALLOWANCE times Eq 9 with Li and Chen's S
+    (the FE level repeats a run that reaches the bottom on a domain twice as deep)."""
+    return DEPTH_ALLOWANCE * float(penetration_depth(mass, nose.radius, nstar(nose),
+                                                     Target(rho, fc, strength_factor(fc, "li_chen")), velocity))
+
+
 def output_fields(fields):
     """Header of the predictions: the input's fields, then dop_pred_m (replacing one the input already has)."""
     return [f for f in fields if f != "dop_pred_m"] + ["dop_pred_m"]

@@ -18,8 +18,8 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from penetration import levels as L  # noqa: E402
 from penetration.config import cpu_model  # noqa: E402
-from penetration.fe.shot import TargetSpec, run_shot  # noqa: E402
-from penetration.fe_level import estimate_cost, expected_depth  # noqa: E402
+from penetration.fe.shot import run_shot  # noqa: E402
+from penetration.fe_level import estimate_cost  # noqa: E402
 from penetration.geometry import Ogive  # noqa: E402
 from penetration.tasks.levels import context_from_pipeline  # noqa: E402
 
@@ -39,13 +39,10 @@ def main() -> int:
     print(f"machine: {machine()}")
     print(f"{'shot':55s} {'estimate s':>10s} {'measured s':>10s} {'ratio':>6s}")
     for name, shot in SHOTS.items():
-        settings, k = L.fe_settings_for(shot, ctx)
-        material = L.fe_material(shot, ctx)
-        target = TargetSpec("semi_infinite", ctx.fe_target_radius * k)
-        exp = expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)
-        est = estimate_cost(shot.nose, shot.mass, shot.velocity, material, settings, target, exp)
+        spec, _ = L.fe_spec(shot, ctx)
+        est = estimate_cost(spec)
         t0 = time.perf_counter()
-        r = run_shot(shot.nose, shot.mass, shot.velocity, material, settings, target, expected_depth=exp)
+        r = run_shot(spec)
         wall = time.perf_counter() - t0
         print(f"{name:55s} {est.seconds:10.1f} {wall:10.1f} {est.seconds / wall:6.2f}   "
               f"({r.elements} elements, {r.steps} steps; estimated {est.steps})", flush=True)

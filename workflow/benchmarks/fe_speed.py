@@ -270,8 +270,7 @@ def main():
           f"element-step, {deep / times['elastic']:.2f} x the benchmark mesh's ({bytes_total / 2**20:.0f} MiB)")
     if args.do1:
         from penetration.fe import shot as fe_shot
-        from penetration.fe.shot import Settings, TargetSpec, run_shot
-        from penetration.fe_level import with_failure_strain
+        from penetration.fe.shot import RunSpec, Settings, run_shot
         from penetration.io import read_inference
         # the pipeline's DO1 shot (its element size, calibrated failure strain and mesh extent)
         ref = json.loads(Path(DO1).read_text())
@@ -290,9 +289,9 @@ def main():
             return solver_run(model, projectile, callback=cb)
 
         fe_shot.run = run_with_snapshot
-        r = run_shot(nose, ref["mass"], ref["velocity"], HJC(),
-                     with_failure_strain(Settings(element_size=ref["element_size"]), ref["failure_strain"]), TargetSpec(),
-                     expected_depth=ref["expected_depth_m"])
+        r = run_shot(RunSpec(nose, ref["mass"], ref["velocity"], HJC(),
+                             Settings(element_size=ref["element_size"]).with_failure_strain(ref["failure_strain"]),
+                             expected_depth=ref["expected_depth_m"]))
         fe_shot.run = solver_run
         print(f"DO1 state at t = {snap['t'] * 1e3:.1f} ms ({snap['window']} elements in the window, {snap['yielded']:.0%} of them "
               f"yielded so far, {snap['flowing']:.1%} of the live ones flowing or crushing in a step): "

@@ -3,7 +3,7 @@
 
 rule calibrate_table3_calc:
     input: **task("tasks.analytic"), **GEOMETRY_RESULTS, cal_do1="results/calibration/do1.json",
-           scene="workflow/scenes/table3.yaml", schema=SCENE_SCHEMA, reference=config["reference"],
+           **scene_input("workflow/scenes/table3.yaml"), schema=SCENE_SCHEMA, reference=config["reference"],
     output: json="results/calibration/table3_calc.json",
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -13,7 +13,7 @@ rule calibrate_table3_calc:
 
 
 use rule calibrate_table3_calc as calibrate_do1 with:
-    input: **task("tasks.analytic"), **GEOMETRY_RESULTS, scene="workflow/scenes/do1.yaml", schema=SCENE_SCHEMA,
+    input: **task("tasks.analytic"), **GEOMETRY_RESULTS, **scene_input("workflow/scenes/do1.yaml"), schema=SCENE_SCHEMA,
            reference=config["reference"],
     output: json="results/calibration/do1.json",
     params: shot=config["calibration"]["do1"],
@@ -22,7 +22,7 @@ use rule calibrate_table3_calc as calibrate_do1 with:
 
 
 use rule calibrate_table3_calc as infer_diameter_450kg with:
-    input: **task("tasks.analytic"), **GEOMETRY_RESULTS, scene="workflow/scenes/sec22_450kg.yaml", schema=SCENE_SCHEMA,
+    input: **task("tasks.analytic"), **GEOMETRY_RESULTS, **scene_input("workflow/scenes/sec22_450kg.yaml"), schema=SCENE_SCHEMA,
            reference=config["reference"], cal_do1="results/calibration/do1.json",
     output: json="results/geometry/diameter_450kg.json",
     params: nose=config["diameter_450kg"]["nose"], axes=config["diameter_450kg"]["axes"],

@@ -38,7 +38,7 @@ rule cavity_table:
 rule scene_cavity:
     input: **task("tasks.cavity"), **GEOMETRY_RESULTS, sigma="results/cavity/sigma_n.csv",
            cal="results/calibration/cavity_do1.json", reference=config["reference"],
-           scene="workflow/scenes/cavity/{scene}.yaml", schema=SCENE_SCHEMA,
+           **scene_input("workflow/scenes/cavity/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: dop="results/scenes/cavity/{scene}.csv", histories="results/scenes/cavity/{scene}_histories.csv",
     params: rtol=config["cavity"]["rtol"], cfg=config["cavity"], hjc=config["concrete"],
     threads: 2

@@ -3,7 +3,7 @@
 
 rule cavity_ablation:
     input: **task("tasks.cavity_studies"), **GEOMETRY_RESULTS, cal="results/calibration/cavity_do1.json",
-           reference=config["reference"], scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
+           reference=config["reference"], **scene_input("workflow/scenes/cavity/table3.yaml"), schema=SCENE_SCHEMA,
     output: csv="figures/ablation_cavity.csv", timing="figures/timing/ablation_cavity.csv",
     params: cfg=config["cavity"], hjc=config["concrete"], shot=config["calibration"]["do1"], study=STUDIES["cavity_ablation"],
     threads: 2
@@ -24,7 +24,7 @@ use rule cavity_ablation as cavity_solver_sweep with:
 
 use rule cavity_ablation as cavity_calibration_variants with:
     input: **task("tasks.cavity_studies"), **GEOMETRY_RESULTS, cal="results/calibration/cavity_do1.json",
-           reference=config["reference"], scene="workflow/scenes/cavity/table3.yaml", schema=SCENE_SCHEMA,
+           reference=config["reference"], **scene_input("workflow/scenes/cavity/table3.yaml"), schema=SCENE_SCHEMA,
     output: csv="results/cavity/calibration_variants.csv",
     params: cfg=config["cavity"], hjc=config["concrete"], shot=config["calibration"]["do1"], study=STUDIES["cavity_calibration_variants"],
     resources: mem_mb=2000, runtime=60

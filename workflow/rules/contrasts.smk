@@ -15,7 +15,7 @@ rule cavity_variant_contrasts:
 use rule cavity_variant_contrasts as nose_contrasts_data with:
     input: **task("tasks.contrasts"), **GEOMETRY_RESULTS, table3="figures/table3.csv", fig15="results/scenes/fig15.csv",
            cavity_fig15="results/scenes/cavity/fig15.csv",
-           cal_do1="results/calibration/do1.json", scene="workflow/scenes/fig15.yaml", schema=SCENE_SCHEMA,
+           cal_do1="results/calibration/do1.json", **scene_input("workflow/scenes/fig15.yaml"), schema=SCENE_SCHEMA,
     output: csv="results/contrasts/nose_contrasts.csv",
     params: rtol=config["trajectory"]["rtol"],
     benchmark: "results/benchmarks/nose_contrasts_data.tsv"

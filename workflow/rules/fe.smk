@@ -37,7 +37,7 @@ rule calibrate_fe_do1:
 
 rule fe_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/{scene}.yaml", schema=SCENE_SCHEMA,
+           cal=lambda w: fe_calibration(w.profile), **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{scene}/{nose}_{velocity}.json",
             histories="results/fe/{profile}/{scene}/{nose}_{velocity}_histories.csv",
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
@@ -61,7 +61,7 @@ def fe_out(name):
 
 rule fe_table3:
     input: **task("tasks.fe_tables"), reference=config["reference"], shots=fe_shots("table3"),
-           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/table3.yaml",
+           cal=lambda w: fe_calibration(w.profile), **scene_input("workflow/scenes/fe/table3.yaml"),
     output: csv=fe_out("table3.csv"), ratios=fe_out("table3_ratios.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5
@@ -146,7 +146,7 @@ use rule fe_fig12 as fe_mesh_study with:
 
 rule fe_nose_pressure:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"], cal=lambda w: fe_calibration(w.profile),
-           scene="workflow/scenes/fe/fig15.yaml", schema=SCENE_SCHEMA,
+           **scene_input("workflow/scenes/fe/fig15.yaml"), schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/nose_pressure.json",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile,
             steel_yield=config["fe_checks"]["steel_yield_pa"],
@@ -276,7 +276,7 @@ def realised(w):
 
 rule fe_ensemble_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), scene=lambda w: f"workflow/scenes/fe/{realised(w)[0]}.yaml", schema=SCENE_SCHEMA,
+           cal=lambda w: fe_calibration(w.profile), **scene_input(lambda w: f"workflow/scenes/fe/{realised(w)[0]}.yaml"), schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{family}/{shot}_m{member}.json",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile,
             nose=lambda w: realised(w)[1], velocity=lambda w: realised(w)[2],
@@ -315,7 +315,7 @@ use rule fe_fig12 as fe_rear_face with:
 
 rule fe_window_study:
     input: **task("tasks.fe_window"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), scene="workflow/scenes/fe/do1.yaml", schema=SCENE_SCHEMA,
+           cal=lambda w: fe_calibration(w.profile), **scene_input("workflow/scenes/fe/do1.yaml"), schema=SCENE_SCHEMA,
     output: runs=fe_out("window.csv"), summary=fe_out("window_summary.csv"), timing="figures/timing/fe_window_{profile}.csv",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile,
             velocity=lambda w: FE_SCENES["do1"][0][1], **config["fe_window"],

@@ -4,7 +4,7 @@
 rule scene:
     input: **task("tasks.trajectory"), **GEOMETRY_RESULTS,
            cal_do1="results/calibration/do1.json", cal_table3_calc="results/calibration/table3_calc.json",
-           diameter="results/geometry/diameter_450kg.json", scene="workflow/scenes/{scene}.yaml", schema=SCENE_SCHEMA,
+           diameter="results/geometry/diameter_450kg.json", **scene_input("workflow/scenes/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: dop="results/scenes/{scene}.csv", histories="results/scenes/{scene}_histories.csv",
     params: rtol=config["trajectory"]["rtol"],
     threads: 1
@@ -16,7 +16,7 @@ rule scene:
 
 rule trajectory_tolerance_sweep:
     input: **task("tasks.trajectory"), **GEOMETRY_RESULTS, cal_do1="results/calibration/do1.json",
-           scene="workflow/scenes/do1.yaml", schema=SCENE_SCHEMA,
+           **scene_input("workflow/scenes/do1.yaml"), schema=SCENE_SCHEMA,
     output: csv="results/studies/trajectory_tolerance.csv",
     params: study=STUDIES["trajectory_tolerance"],
     threads: 1

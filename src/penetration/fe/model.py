@@ -13,54 +13,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError
 from . import element_pass as _element_pass, erosion, nodes as _nodes, window
 from .constitutive import impedances, material_of
 from .contact import Projectile
 from .mesh import Grid
-from .state import (ACTIVE, BOUNDARIES, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH,
+from .spec import Controls
+from .state import (ACTIVE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH,
                     DROPPED, EROSION_KINDS, FIX_R, FIX_Z, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Boundary, Body, Loads,
                     Nodes, Rows, Span)
-
-
-@dataclass(frozen=True)
-class Controls:
-    """Numerical controls; defaults follow LS-DYNA's (QH 0.1, Q1 1.5, Q2 0.06, time-step factor 0.9)."""
-    dt_factor: float = 0.9
-    hourglass: float = 0.1
-    q1: float = 1.5
-    q2: float = 0.06
-    erosion: str = "none"
-    erosion_value: float = math.inf
-    guard: bool = True          # erode inverted or time-step-collapsed elements (else stop with a diagnostic)
-    dt_floor: float = 1e-3      # guard threshold: element step below this fraction of the initial step
-    drop_free_nodes: bool = True
-    lateral: str = "free"
-    bottom: str = "free"
-    end_time: float = 0.05
-    output_interval: float = 1e-4
-    max_energy_error: float = 0.5  # stop (unstable) when the audit's relative error exceeds this
-    window_ahead: float | None = None   # m: rows computed down to this far ahead of the tip (None: whole domain)
-    window_behind: float | None = None  # m: rows further behind the tip than this are retired (None: kept)
-
-    def __post_init__(self):
-        if not 0.0 < self.dt_factor <= 1.0:
-            raise ParameterError("fe controls", "dt_factor", self.dt_factor, "0 < dt_factor <= 1")
-        if not 0.0 <= self.hourglass <= 0.15:
-            raise ParameterError("fe controls", "hourglass", self.hourglass, "0 <= hourglass <= 0.15 (unstable above)")
-        if self.erosion not in EROSION_KINDS:
-            raise ParameterError("fe controls", "erosion", self.erosion, f"one of {sorted(EROSION_KINDS)}")
-        if self.erosion != "none" and not self.erosion_value > 0:
-            raise ParameterError("fe controls", "erosion_value", self.erosion_value, "> 0")
-        for key in ("lateral", "bottom"):
-            if getattr(self, key) not in BOUNDARIES:
-                raise ParameterError("fe controls", key, getattr(self, key), f"one of {sorted(BOUNDARIES)}")
-        for key in ("window_ahead", "window_behind"):
-            v = getattr(self, key)
-            if v is not None and not v > 0:
-                raise ParameterError("fe controls", key, v, "> 0 (m) or None")
-        if not (self.end_time > 0 and self.output_interval > 0):
-            raise ParameterError("fe controls", "end_time, output_interval", (self.end_time, self.output_interval), "> 0 (s)")
 
 
 def _edges(r, z):

@@ -1,23 +1,9 @@
-"""One shot at the finite-element level: mesh, target, material and projectile from a shot's data; results.
+"""One shot at the finite-element level: the mesh, model and projectile of a run spec (``spec.RunSpec``), its run,
+and its results (depth, filtered deceleration, audit, nose pressure, the share of the tunnel eroded).
 
-Target (``TargetSpec``): ``semi_infinite`` (the paper's simulation, text
-l.240: "a circular semi-infinite target") is a cylinder of radius
-``radius`` with non-reflecting lateral and bottom boundaries, deep enough
-for the shot (a run that reaches the bottom is repeated on a domain twice as
-deep, unless the depth is set); ``block`` is the experiment's 3.6 m x 3.6 m x 5.4 m block as a
-cylinder of the same cross-section area (radius 3.6/sqrt(pi) = 2.031 m)
-and depth 5.4 m with free faces. The lateral and bottom faces can be set apart
-(``lateral``, ``bottom``: non-reflecting or free), so that the rear-face study
-changes one thing at a time between the two.
-
-Moving window (``window_ahead``, ``window_tail``): only the rows from
-window_tail behind the projectile's tail to window_ahead ahead of its tip are
-computed (the rule fe_window_study compares DO1 with the window and with the
-whole domain: figures/fe/{profile}/window_summary.csv).
-
-Deceleration: the contact impulses are summed in bins of ``bin_width`` and
-filtered by a zero-phase fourth-order Butterworth low-pass at ``cutoff``
-(the declared filter; tasks.fe records the peak at the other cut-offs of the config).
+``run_shot(spec)`` runs a spec built once (``fe_level.scene_spec`` for a scene
+of the pipeline, ``levels.fe_spec`` for a user's shot); nothing is read from
+elsewhere after that.
 """
 from __future__ import annotations
 
@@ -25,73 +11,19 @@ import contextlib
 import logging
 import math
 import time
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.signal import butter, filtfilt
 
-from ..errors import ParameterError
 from . import state as fe_state
 from .contact import Projectile
 from .mesh import MeshSpec, body_outline, build
-from .model import Controls, Model
+from .model import Model
 from .solver import LOG, run
+from .spec import BLOCK_RADIUS, Controls, RunSpec, Settings, TargetSpec  # noqa: F401 (the level's names)
 
 G0 = 9.80665
-BLOCK_RADIUS = 3.6 / math.sqrt(math.pi)  # equal cross-section area with the 3.6 m x 3.6 m block
-
-
-BOUNDARIES = ("non_reflecting", "free")
-
-
-@dataclass(frozen=True)
-class TargetSpec:
-    kind: str = "semi_infinite"
-    radius: float = 1.2          # m (block: BLOCK_RADIUS)
-    depth: float | None = None   # m; None: from the expected depth (semi-infinite) or 5.4 (block)
-    lateral: str | None = None   # the lateral face, one of BOUNDARIES; None: by kind (semi-infinite non-reflecting)
-    bottom: str | None = None    # the bottom face, likewise
-
-    def __post_init__(self):
-        if self.kind not in ("semi_infinite", "block"):
-            raise ParameterError("fe target", "kind", self.kind, "semi_infinite or block")
-        if not self.radius > 0:
-            raise ParameterError("fe target", "radius", self.radius, "> 0 (m)")
-        if self.depth is not None and not self.depth > 0:
-            raise ParameterError("fe target", "depth", self.depth, "> 0 (m) or None")
-        for name in ("lateral", "bottom"):
-            if getattr(self, name) not in (None, *BOUNDARIES):
-                raise ParameterError("fe target", name, getattr(self, name), f"one of {BOUNDARIES} or None")
-
-    def boundary(self, face):
-        """The boundary of a face ('lateral' or 'bottom'): as set, else free for the block, non-reflecting else."""
-        return getattr(self, face) or ("free" if self.kind == "block" else "non_reflecting")
-
-
-@dataclass(frozen=True)
-class Settings:
-    """Mesh and run settings of the level (element size in m; the core is core_calibers shank radii wide)."""
-    element_size: float = 0.00875
-    core_calibers: float = 3.0
-    grading: float = 1.1
-    depth_margin: float = 1.0      # m of target beyond the expected depth (semi-infinite)
-    body_length: float = 1.13      # m, projectile length (Table 2)
-    bin_width: float = 2e-6        # s, deceleration bins
-    cutoff_hz: float = 10e3        # Hz, declared low-pass cut-off of the deceleration
-    output_interval: float = 1e-4  # s
-    window_ahead: float | None = 1.5    # m computed ahead of the tip (None: the whole domain)
-    window_tail: float | None = 0.5     # m kept behind the tail (rows further behind are retired; None: kept)
-    controls: Controls = field(default_factory=Controls)
-
-    @classmethod
-    def from_config(cls, cfg, profile, element_size=None):
-        """The settings of an ``fe`` config slice at a mesh profile's element size (or ``element_size``): each field
-        of the settings and of their controls that the slice names takes its value, every other keeps its default
-        here (the config schema only bounds them)."""
-        own = {f.name for f in fields(cls)} - {"element_size", "controls"}
-        controls = Controls(**{f.name: cfg[f.name] for f in fields(Controls) if f.name in cfg and f.name not in own})
-        h = element_size if element_size is not None else cfg["profiles"][profile]["element_size"]
-        return cls(element_size=h, controls=controls, **{k: cfg[k] for k in own if k in cfg})
 
 
 def mesh_spec(nose, settings: Settings, target: TargetSpec, expected_depth) -> MeshSpec:
@@ -209,8 +141,9 @@ class ShotResult:
 
 
 @contextlib.contextmanager
-def _forwarded(log):
-    """Progress of the solver's logger also to the callable ``log`` (a line at a time) while the block runs."""
+def progress_to(log):
+    """Progress of the solver's logger also to the callable ``log`` (a line at a time) while the block runs (None:
+    nothing added)."""
     if log is None:
         yield
         return
@@ -230,38 +163,32 @@ def _forwarded(log):
         LOG.setLevel(level)
 
 
-def run_shot(nose, mass, velocity, material, settings: Settings = Settings(), target: TargetSpec = TargetSpec(),
-             expected_depth=None, friction=0.0, keep_model=False, log=None, max_attempts=3):
-    """Penetration of a rigid projectile (``nose`` + shank to settings.body_length) into the FE target."""
-    if not (math.isfinite(velocity) and 0 < velocity <= 3000):
-        raise ParameterError("fe shot", "velocity", velocity, "0 < velocity <= 3000 (m/s)")
-    if not (math.isfinite(mass) and mass > 0):
-        raise ParameterError("fe shot", "mass", mass, "> 0 (kg)")
-    expected = expected_depth if expected_depth is not None else 5.0
+def run_shot(spec: RunSpec, keep_model=False, max_attempts=3) -> ShotResult:
+    """Penetration of the spec's rigid projectile into its FE target; progress through the solver's logger."""
+    settings, target, nose = spec.settings, spec.target, spec.nose
+    expected = spec.expected_depth
     zeta, rho = body_outline(nose, settings.body_length)
-    with _forwarded(log):
-        for attempt in range(1, max_attempts + 1):
-            model = model_for(nose, settings, target, material, expected)
-            proj = Projectile(zeta, rho, mass, 0.0, velocity, friction)
-            pmax = [0.0]
+    for attempt in range(1, max_attempts + 1):
+        model = model_for(nose, settings, target, spec.material, expected)
+        proj = Projectile(zeta, rho, spec.mass, 0.0, spec.velocity, spec.friction)
+        pmax = [0.0]
 
-            def sample(m, t):
-                pmax[0] = max(pmax[0], nose_pressure(m, proj, nose, settings.element_size))
+        def sample(m, t):
+            pmax[0] = max(pmax[0], nose_pressure(m, proj, nose, settings.element_size))
 
-            t0 = time.perf_counter()
-            res = run(model, proj, callback=sample)
-            wall = time.perf_counter() - t0
-            if (res.status == "perforated" and target.kind == "semi_infinite" and target.depth is None
-                    and attempt < max_attempts):
-                expected *= 2.0
-                LOG.info("reached the bottom of a %.2f m domain: repeating 2 times deeper", model.z.max())
-                continue
-            break
+        t0 = time.perf_counter()
+        res = run(model, proj, callback=sample)
+        wall = time.perf_counter() - t0
+        if (res.status == "perforated" and target.kind == "semi_infinite" and target.depth is None
+                and attempt < max_attempts):
+            expected *= 2.0
+            LOG.info("reached the bottom of a %.2f m domain: repeating 2 times deeper", model.z.max())
+            continue
+        break
     h = res.history
-    tb, dec = filtered(h["t"], h["contact_force"], mass, settings.bin_width, settings.cutoff_hz)
-    out = ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
-                     {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
-                      "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
-                     model.eroded_mass, pmax[0], model if keep_model else None, attempt,
-                     tunnel_eroded_share(model, nose.radius, float(proj.Zt)), res.dt_shares, res.dt_control)
-    return out
+    tb, dec = filtered(h["t"], h["contact_force"], spec.mass, settings.bin_width, settings.cutoff_hz)
+    return ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
+                      {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
+                       "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
+                      model.eroded_mass, pmax[0], model if keep_model else None, attempt,
+                      tunnel_eroded_share(model, nose.radius, float(proj.Zt)), res.dt_shares, res.dt_control)

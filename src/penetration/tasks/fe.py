@@ -19,29 +19,13 @@ import pandas as pd
 from .. import concrete, reference
 from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
-from ..fe.shot import BLOCK_RADIUS, Settings, TargetSpec, binned, lowpass, run_shot
-from ..fe_level import calibrate_failure_strain, expected_depth, with_failure_strain
+from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
+from ..fe_level import calibrate_failure_strain, scene_spec
 from ..io import load_json, read_inference, task, write_csv, write_json
+from ..shots import expected_depth
 from .common import calibration_row, do1_shot, scene_from_inputs
 
 FE = ("fe",)
-
-
-def _target(fe, cfg):
-    """The scene's target: its kind's radius and depth unless the scene sets them, and its faces' boundaries."""
-    kind = fe.get("target", "semi_infinite")
-    block = kind == "block"
-    return TargetSpec(kind, fe.get("target_radius", BLOCK_RADIUS if block else cfg["target_radius"]),
-                      fe.get("target_depth", cfg["block_depth"] if block else None),
-                      fe.get("lateral_boundary"), fe.get("bottom_boundary"))
-
-
-def _check_table1_target(sc, refs):
-    for field, quantity in (("rho", "rho"), ("fc", "fc")):
-        want = refs[f"table1.{quantity}"].si
-        if not math.isclose(getattr(sc.target, field), want, rel_tol=1e-12):
-            raise ValueError(f"{sc.name}: target.{field} = {getattr(sc.target, field)}; allowed at level fe: "
-                             f"{want} (the HJC set of Table 1 exists for this concrete only)")
 
 
 class TrialMemo(dict):
@@ -81,19 +65,18 @@ def calibrate_fe_do1(inputs, outputs, params):
     refs = reference.load_reference(inputs.reference)
     cfg = params.cfg
     h = float(params.size)
-    settings = Settings.from_config(cfg, params.profile, h)
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
-    material = concrete.configured(refs, params.hjc)
     t0 = time.perf_counter()
-    target = TargetSpec("semi_infinite", cfg["target_radius"])
     rho, fc = refs["table1.rho"].si, refs["table1.fc"].si
-    expected = expected_depth(nose, mass, vs, fc, rho)
-    memo = TrialMemo(Path(outputs.json).parent / "trials", nose, mass, vs, depth, material, settings, target, expected)
+    spec = RunSpec(nose, mass, vs, concrete.configured(refs, params.hjc), Settings.from_config(cfg, params.profile, h),
+                   TargetSpec("semi_infinite", cfg["target_radius"]), expected_depth(nose, mass, vs, fc, rho))
+    memo = TrialMemo(Path(outputs.json).parent / "trials", spec.nose, spec.mass, spec.velocity, depth, spec.material,
+                     spec.settings, spec.target, spec.expected_depth)
     if memo:
         print(f"{len(memo)} finished trials of this calibration found in {memo.path}: not run again", flush=True)
-    fit = calibrate_failure_strain(nose, mass, vs, depth, material, settings, target, tuple(cfg["fs_bracket"]),
-                                   cfg["calibration_tol_m"], expected_depth=expected, memo=memo)
+    fit = calibrate_failure_strain(spec, depth, tuple(cfg["fs_bracket"]), cfg["calibration_tol_m"],
+                                   log=lambda line: print(line, flush=True), memo=memo)
     write_json({"calibration": "fe_do1", "fitted_quantity": "failure strain fs: erosion of an element once its "
                 "equivalent plastic strain reaches fs (the paper's calibrated 0.38 belongs to its own 3-D mesh; fs "
                 "is bound to the element size)",
@@ -104,41 +87,29 @@ def calibrate_fe_do1(inputs, outputs, params):
 
 def scene_shot(inputs, params, velocity_factor=1.0):
     """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor); returns (summary, result,
-    settings, scene)."""
+    spec, scene)."""
     refs = reference.load_reference(inputs.reference)
     sc = scene_from_inputs(inputs, FE)
-    _check_table1_target(sc, refs)
     cfg = params.cfg
-    nose = sc.noses[params.nose]
     v = float(params.velocity)
-    if not np.any(np.isclose(sc.velocities, v)):
-        raise ValueError(f"{sc.name}: velocity {v} is not among the scene's {list(sc.velocities)}")
-    switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
-    material = concrete.configured(refs, params.hjc, **switches)
-    settings = Settings.from_config(cfg, params.profile)
-    fs = sc.fe.get("erosion_strain")
-    provenance = "none (no erosion: only the guards remove inverted elements)"
-    if fs == "calibrated":
-        cal = load_json(inputs.cal)
-        if not math.isclose(cal["element_size"], settings.element_size):
-            raise ValueError(f"calibration at element size {cal['element_size']} m used on a {settings.element_size} m mesh")
-        fs, provenance = cal["fs"], f"calibrated on DO1 at element size {cal['element_size']} m"
-    if fs is not None:
-        settings = with_failure_strain(settings, float(fs))
-    expected = expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho)
-    r = run_shot(nose, sc.mass, v * velocity_factor, material, settings, _target(sc.fe, cfg), expected_depth=expected,
-                 friction=sc.friction, keep_model=True, log=lambda s: print(s, flush=True))
+    expected = expected_depth(sc.noses[params.nose], sc.mass, v, sc.target.fc, sc.target.rho)
+    cal = load_json(inputs.cal) if sc.fe.get("erosion_strain") == "calibrated" else None
+    spec, notes = scene_spec(sc, params.nose, v, refs, params.hjc, cfg, params.profile, expected, cal, velocity_factor)
+    with progress_to(lambda line: print(line, flush=True)):
+        r = run_shot(spec, keep_model=True)
     summary = {"scene": sc.name, "nose": params.nose, "velocity": v, "mass": sc.mass, "profile": params.profile,
-               "element_size": settings.element_size, "failure_strain": fs, "failure_strain_provenance": provenance,
-               "target": dataclasses.asdict(_target(sc.fe, cfg)), "material_switches": switches,
-               "expected_depth_m": expected, "cutoff_hz": settings.cutoff_hz, **r.summary()}
-    return summary, r, settings, sc
+               "element_size": spec.settings.element_size, "failure_strain": notes["failure_strain"],
+               "failure_strain_provenance": notes["failure_strain_provenance"],
+               "target": dataclasses.asdict(spec.target), "material_switches": notes["material_switches"],
+               "expected_depth_m": expected, "cutoff_hz": spec.settings.cutoff_hz, **r.summary()}
+    return summary, r, spec, sc
 
 
 @task
 def fe_shot(inputs, outputs, params):
     """One nose at one velocity of an FE scene: depth, deceleration, audit, histories and the final fields."""
-    summary, r, settings, sc = scene_shot(inputs, params)
+    summary, r, spec, sc = scene_shot(inputs, params)
+    settings = spec.settings
     cfg = params.cfg
     h = r.histories
     # depth and velocity sampled on the deceleration bins (impulse-conserving bin sums of the contact force)
@@ -178,7 +149,7 @@ def fe_ensemble_shot(inputs, outputs, params):
         raise ValueError(f"fe_ensemble.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
                          "the chaos, not a change of the shot)")
     factor = 1.0 + member * step
-    summary, r, settings, sc = scene_shot(inputs, params, factor)
+    summary, r, spec, sc = scene_shot(inputs, params, factor)
     write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
                 "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
 
@@ -189,11 +160,12 @@ def fe_meshes(inputs, outputs, params):
     from ..geometry import Ogive
     do1 = read_inference(inputs.do1)["nose"]
     cfg = params.cfg
-    h = cfg["profiles"][params.profile]["element_size"]
-    g = build(MeshSpec(h, cfg["core_calibers"] * do1.radius, 1.0, cfg["target_radius"], 2.0, cfg["grading"]))
+    s = Settings.from_config(cfg, params.profile)
+    h = s.element_size
+    g = build(MeshSpec(h, s.core_calibers * do1.radius, 1.0, cfg["target_radius"], 2.0, s.grading))
     rows = []
     for name, nose in (("double_ogive", do1), ("crh45", Ogive(4.5, do1.radius)), ("crh3", Ogive(3.0, do1.radius))):
-        zeta, rho = body_outline(nose, cfg["body_length"])
+        zeta, rho = body_outline(nose, s.body_length)
         rows += [{"kind": "outline", "nose": name, "r": a, "z": -b, "nose_length_m": nose.length} for a, b in zip(rho, zeta)]
     rows += [{"kind": "mesh_r", "nose": "", "r": x, "z": math.nan, "nose_length_m": math.nan} for x in g.r]
     rows += [{"kind": "mesh_z", "nose": "", "r": math.nan, "z": x, "nose_length_m": math.nan} for x in g.z]
@@ -208,21 +180,19 @@ def fe_nose_pressure(inputs, outputs, params):
     cfg = params.cfg
     cal = load_json(inputs.cal)
     sc = scene_from_inputs(inputs, FE)
-    material = concrete.configured(refs, params.hjc, **concrete.material_switches(sc.effects, sc.material, params.hjc))
     v = float(max(sc.velocities))
     rows = {}
     for name in ("double_ogive", "crh45", "crh3"):
         nose = sc.noses[name]
         end = (nose.length + 2 * nose.radius) / v + 5e-4
-        base = Settings.from_config(cfg, params.profile)
-        settings = with_failure_strain(dataclasses.replace(base, controls=dataclasses.replace(base.controls, end_time=end)),
-                                       cal["fs"])
-        r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg),
-                     expected_depth=expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho))
+        spec, _ = scene_spec(sc, name, v, refs, params.hjc, cfg, params.profile,
+                             expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), cal)
+        spec = spec.with_settings(spec.settings.with_controls(end_time=end))
+        r = run_shot(spec)
         rows[name] = {"velocity": v, "time_s": end, "max_nose_pressure_pa": r.max_nose_pressure,
                       "over_steel_yield": r.max_nose_pressure / params.steel_yield}
         print(f"{name}: {r.max_nose_pressure / 1e6:.0f} MPa over the first {end * 1e3:.2f} ms at {v:.0f} m/s")
-    write_json({"steel_yield_pa_assumed": params.steel_yield, "element_size_m": settings.element_size,
+    write_json({"steel_yield_pa_assumed": params.steel_yield, "element_size_m": spec.settings.element_size,
                 "sampling": "-sigma_nn of live elements within 2.5 elements of the nose surface, every output interval",
                 "noses": rows}, outputs.json)
 

@@ -20,6 +20,7 @@ from types import SimpleNamespace
 
 import pandas as pd
 
+from ..fe.spec import Settings
 from ..fe_studies import window_summary
 from ..io import task, write_csv
 from .fe import scene_shot
@@ -35,7 +36,8 @@ def fe_window_study(inputs, outputs, params):
         raise ValueError(f"fe_window.members = {members}; allowed: >= 2 (a mean and its spread)")
     if not 0.0 < step <= 1e-6:
         raise ValueError(f"fe_window.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6")
-    if params.cfg["window_ahead"] is None and params.cfg["window_tail"] is None:
+    level = Settings.from_config(params.cfg, params.profile)
+    if level.window_ahead is None and level.window_tail is None:
         raise ValueError("fe.window_ahead and fe.window_tail are both unset: there is no window to compare")
     rows, wall = [], []
     for domain in DOMAINS:

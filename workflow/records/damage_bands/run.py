@@ -25,8 +25,8 @@ import yaml
 
 from penetration import reference
 from penetration.fe import state as fe_state
-from penetration.fe.shot import TargetSpec, run_shot
-from penetration.fe_level import expected_depth, with_failure_strain
+from penetration.fe.shot import RunSpec, TargetSpec, run_shot
+from penetration.shots import expected_depth
 from penetration.io import load_json
 from penetration import concrete
 from penetration.tasks.common import scene_from_inputs
@@ -44,13 +44,12 @@ nose = sc.noses["double_ogive"]
 material = concrete.configured(refs, cfg["concrete"], **concrete.material_switches(sc.effects, sc.material, cfg["concrete"]))
 across = float(sys.argv[4]) if len(sys.argv) > 4 else 8.0
 fs = float(sys.argv[5]) if len(sys.argv) > 5 else load_json("results/fe/full/calibration_h0.00875.json")["fs"]
-settings = with_failure_strain(Settings.from_config(cfg["fe"], "full", nose.radius / across), fs)
+settings = Settings.from_config(cfg["fe"], "full", nose.radius / across).with_failure_strain(fs)
 settings = dataclasses.replace(settings, window_ahead=None if ahead == "none" else float(ahead))
 v = 835.0
 with contextlib.redirect_stdout(io.StringIO()):
-    r = run_shot(nose, sc.mass, v, material, settings, TargetSpec("semi_infinite", radius),
-                 expected_depth=expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), friction=sc.friction,
-                 keep_model=True)
+    r = run_shot(RunSpec(nose, sc.mass, v, material, settings, TargetSpec("semi_infinite", radius),
+                         expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), sc.friction), keep_model=True)
 m = r.model
 g = m.grid
 conn = g.connectivity()

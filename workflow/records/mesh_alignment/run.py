@@ -19,13 +19,12 @@ from types import SimpleNamespace
 import yaml
 
 from penetration import reference
-from penetration.fe.shot import run_shot
-from penetration.fe_level import expected_depth, with_failure_strain
+from penetration.fe.shot import RunSpec, TargetSpec, run_shot
+from penetration.shots import expected_depth
 from penetration.io import load_json
 from penetration import concrete
 from penetration.tasks.common import scene_from_inputs
 from penetration.fe.shot import Settings
-from penetration.tasks.fe import _target
 
 cfg = yaml.safe_load(open("workflow/config.yaml"))
 nose_name, v, across = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
@@ -37,10 +36,11 @@ refs = reference.load_reference(inputs.reference)
 sc = scene_from_inputs(inputs, ("fe",))
 nose = sc.noses[nose_name]
 material = concrete.configured(refs, cfg["concrete"], **concrete.material_switches(sc.effects, sc.material, cfg["concrete"]))
-settings = with_failure_strain(Settings.from_config(cfg["fe"], "full", nose.radius / across), fs)
+settings = Settings.from_config(cfg["fe"], "full", nose.radius / across).with_failure_strain(fs)
 with contextlib.redirect_stdout(io.StringIO()):
-    r = run_shot(nose, sc.mass, v, material, settings, _target(sc.fe, cfg["fe"]),
-                 expected_depth=expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), friction=sc.friction)
+    r = run_shot(RunSpec(nose, sc.mass, v, material, settings,
+                         TargetSpec.from_scene(sc.fe, cfg["fe"]["target_radius"], cfg["fe"]["block_depth"]),
+                         expected_depth(nose, sc.mass, v, sc.target.fc, sc.target.rho), sc.friction))
 print(json.dumps({"nose": nose_name, "velocity_ms": v, "elements_across_radius": across,
                   "element_size_m": settings.element_size, "failure_strain": fs, "depth_m": r.depth, "status": r.status,
                   "wall_time_s": round(r.wall_time, 1)}), flush=True)
