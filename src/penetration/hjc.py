@@ -200,7 +200,8 @@ def dense_pressure(mu, q):
     """Fully dense curve (Eq 15); linear k1 in tension."""
     mb = (mu - q[I_MULOCK]) / (1.0 + q[I_MULOCK])
     cubic = q[I_K1] * mb + q[I_K2] * mb * mb + q[I_K3] * mb * mb * mb
-    return q[I_K1] * mb if mb <= 0.0 else cubic
+    linear = q[I_K1] * mb
+    return linear if mb <= 0.0 else cubic
 
 
 @njit(cache=True, inline="always")
@@ -213,7 +214,8 @@ def _crush_pressure(mu, q):
 def loading_pressure(mu, q):
     """Virgin loading curve p(mu): Eqs 12, 13, 15."""
     elastic, crush, dense = q[I_KE] * mu, _crush_pressure(mu, q), dense_pressure(mu, q)
-    return elastic if mu <= q[I_MUC] else (crush if mu <= q[I_MUCRUSH] else dense)
+    muc, mul = q[I_MUC], q[I_MUCRUSH]
+    return elastic if mu <= muc else (crush if mu <= mul else dense)
 
 
 @njit(cache=True, inline="always")
@@ -254,8 +256,10 @@ def eos(mu, mu_max, q):
     elastic = q[I_KE] * mu
     unload = _crush_pressure(mu_max, q) - unloading_modulus(mu_max, q) * (mu_max - mu)
     dense = dense_pressure(mu, q)
-    load = elastic if mu <= q[I_MUC] else (_crush_pressure(mu, q) if mu <= q[I_MUCRUSH] else dense)
-    p = load if loading else (elastic if mu_max <= q[I_MUC] else (unload if mu_max <= q[I_MUCRUSH] else dense))
+    crush = _crush_pressure(mu, q)
+    muc, mul = q[I_MUC], q[I_MUCRUSH]   # read before the selects: a conditional load keeps a loop from vectorising
+    load = elastic if mu <= muc else (crush if mu <= mul else dense)
+    p = load if loading else (elastic if mu_max <= muc else (unload if mu_max <= mul else dense))
     mu_max = mu if loading else mu_max
     return p, mu_max, permanent_strain(mu_max, q)
 
@@ -265,7 +269,9 @@ def permanent_strain(mu_max, q):
     """Crush (plastic volumetric) strain left after unloading from mu_max."""
     m = min(mu_max, q[I_MUCRUSH])
     # m > mu_c wherever the result is used: loading_pressure(m) is the crush line there
-    return 0.0 if mu_max <= q[I_MUC] else m - loading_pressure(m, q) / unloading_modulus(m, q)
+    left = m - loading_pressure(m, q) / unloading_modulus(m, q)
+    muc = q[I_MUC]
+    return 0.0 if mu_max <= muc else left
 
 
 @njit(cache=True, inline="always")
@@ -274,39 +280,72 @@ def cutoff(p, D, q):
 
 
 @njit(cache=True, inline="always")
-def strength(p, D, rate, q):
-    """Yield stress sigma_y (Pa) at pressure p, damage D, equivalent strain rate (1/s)."""
-    fc = q[I_FC]
+def surface_arguments(p, rate, q):
+    """The arguments of the strength surface's two transcendental terms at pressure p and equivalent strain rate:
+    the strain-rate ratio whose logarithm the rate factor takes (1 where the factor is 1: the rate floor, r = 1,
+    r <= 0 or NaN; ln 1 = 0 exactly, and C = 0 switches the term off) and the normalised pressure max(p/fc, 0)
+    whose power N the compressive branch takes. A loop that evaluates the surface for many points takes the
+    logarithms and powers of these in a scalar loop of their own (numba's LLVM has no vector library for them)
+    and the rest vectorised (strength_of)."""
     r = rate / q[I_EPS0]
-    if q[I_RATEFLOOR] > 0.5:
-        r = max(r, 1.0)
-    # ln 1 = 0 exactly: r = 1 (or r <= 0, NaN) gives the factor 1, and C = 0 switches the rate term off
-    factor = 1.0 + q[I_C] * math.log(r if (r > 0.0 and r != 1.0) else 1.0)
+    r = max(r, 1.0) if q[I_RATEFLOOR] > 0.5 else r
+    return (r if ((r > 0.0) & (r != 1.0)) else 1.0), max(p / q[I_FC], 0.0)
+
+
+@njit(cache=True, inline="always")
+def strength_of(ln_rate, power, p, D, q):
+    """Yield stress sigma_y (Pa) at pressure p and damage D from the surface's transcendental terms: ln_rate the
+    logarithm and power the N-th power of surface_arguments' two values."""
+    fc = q[I_FC]
+    factor = 1.0 + q[I_C] * ln_rate
     ps = p / fc
-    comp = q[I_A] * (1.0 - D) + q[I_B] * max(ps, 0.0) ** q[I_N]
-    if q[I_TENSION] < 0.5:
-        tens = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D)
-    else:
-        tens = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
+    comp = q[I_A] * (1.0 - D) + q[I_B] * power
+    tens_linear = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D)
+    tens_offset = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
+    tens = tens_linear if q[I_TENSION] < 0.5 else tens_offset
     s = comp if ps >= 0.0 else tens
     s = max(s, 0.0) * factor
     return q[I_SCALE] * fc * min(s, q[I_SMAX])
 
 
 @njit(cache=True, inline="always")
+def strength(p, D, rate, q):
+    """Yield stress sigma_y (Pa) at pressure p, damage D, equivalent strain rate (1/s)."""
+    r, x = surface_arguments(p, rate, q)
+    return strength_of(math.log(r), x ** q[I_N], p, D, q)
+
+
+@njit(cache=True, inline="always")
+def spent(sy, eps_p, q):
+    """The yield stress sy, or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
+    return 0.0 if eps_p >= q[I_EROSION] else sy
+
+
+@njit(cache=True, inline="always")
 def yield_stress(p, D, eps_p, rate, q):
     """strength(), or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
-    sy = strength(p, D, rate, q)
-    return 0.0 if eps_p >= q[I_EROSION] else sy
+    return spent(strength(p, D, rate, q), eps_p, q)
+
+
+@njit(cache=True, inline="always")
+def fracture_argument(p, q):
+    """P* + T* of Eq 18, whose power D2 the fracture strain takes."""
+    return (p + q[I_T]) / q[I_FC]
+
+
+@njit(cache=True, inline="always")
+def fracture_strain_of(x, power, q):
+    """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18, from x = P* + T* and power = x^D2."""
+    floor, grown = q[I_EFMIN], q[I_D1] * power
+    return floor if x <= 0.0 else max(floor, grown)
 
 
 @njit(cache=True, inline="always")
 def fracture_strain(p, q):
     """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18."""
-    x = (p + q[I_T]) / q[I_FC]
+    x = fracture_argument(p, q)
     # IEEE pow gives x ** 1.0 = x exactly: the paper's D2 = 1 needs no power
-    xd = x if q[I_D2] == 1.0 else x ** q[I_D2]
-    return q[I_EFMIN] if x <= 0.0 else max(q[I_EFMIN], q[I_D1] * xd)
+    return fracture_strain_of(x, x if q[I_D2] == 1.0 else x ** q[I_D2], q)
 
 
 N_CHORDS = 14
@@ -402,16 +441,10 @@ def quick_update(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, rate,
 
 
 @njit(cache=True, inline="always")
-def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2, d3, d4, d5, rate, q):
-    """One HJC stress update of a material point (hypo-elastic, radial return), on scalars.
-
-    s0..s5: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
-    components), already rotated (Jaumann) by the caller; eps_p: plastic
-    strain accumulated so far (erosion criterion); d0..d5: total strain
-    increment (same layout, tensor shear). Returns the new s0..s5, p, mu_max,
-    mu_p, D and the plastic strain increment. Without data-dependent branches:
-    the yield surface is evaluated at every call and the return selected.
-    """
+def trial_state(s0, s1, s2, s3, s4, s5, mu, mu_max, D, eps_p, d0, d1, d2, d3, d4, d5, q):
+    """The first half of update_voigt, up to the strength surface: the elastic trial deviator s0..s5, the pressure
+    (EOS and tensile cut-off), the new mu_max and mu_p, the trial equivalent stress, and whether it lies below a
+    lower bound of the surface (no flow, whatever the surface's value)."""
     G = q[I_G]
     s0, s1, s2, s3 = deviatoric_trial(s0, s1, s2, s3, d0, d1, d2, d3, G)
     s4 += 2.0 * G * d4
@@ -421,20 +454,50 @@ def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2,
     seq = math.sqrt(3.0 * (0.5 * (s0 * s0 + s1 * s1 + s2 * s2) + s3 * s3 + s4 * s4 + s5 * s5))
     # below a lower bound of the surface there is no flow (with a rate factor >= 1 and p >= 0,
     # sigma_y >= scale fc min(A (1 - D), Smax)); the surface is evaluated anyway, the bound only decides
-    below = (p >= 0.0 and eps_p < q[I_EROSION] and (q[I_RATEFLOOR] > 0.5 or q[I_C] == 0.0)
-             and seq <= q[I_SCALE] * q[I_FC] * min(q[I_A] * (1.0 - D), q[I_SMAX]))
-    sy = yield_stress(p, D, eps_p, rate, q)
-    flow = (not below) and seq > sy
-    scale = (sy / seq if seq > 0.0 else 0.0) if flow else 1.0
-    dep = (seq - sy) / (3.0 * G) if flow else 0.0
+    # (& and |, not the short-circuiting and/or: numba's reference counting of q on the branches they make keeps a
+    # loop over points from vectorising)
+    below = ((p >= 0.0) & (eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0))
+             & (seq <= q[I_SCALE] * q[I_FC] * min(q[I_A] * (1.0 - D), q[I_SMAX])))
+    return s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below
+
+
+@njit(cache=True, inline="always")
+def radial_return(s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below, mu_p, D, sy, ef, q):
+    """The second half of update_voigt, from the trial state (trial_state), the yield stress sy and the fracture
+    strain ef at its pressure: the radial return, the damage growth and the cut-off at the new damage. Returns the
+    new s0..s5, p, mu_max, mu_p, D and the plastic strain increment."""
+    flow = (not below) & (seq > sy)
+    ratio = sy / seq
+    scale = (ratio if seq > 0.0 else 0.0) if flow else 1.0
+    excess = (seq - sy) / (3.0 * q[I_G])
+    dep = excess if flow else 0.0
     dmu_p = max(mu_p_new - mu_p, 0.0)
-    grow = q[I_DAMAGE] > 0.5 and dep + dmu_p > 0.0
-    D = min(1.0, D + (dep + dmu_p) / fracture_strain(p, q)) if grow else D
+    grow = (q[I_DAMAGE] > 0.5) & (dep + dmu_p > 0.0)
+    grown = min(1.0, D + (dep + dmu_p) / ef)
+    D = grown if grow else D
     p = cutoff(p, D, q)
     return s0 * scale, s1 * scale, s2 * scale, s3 * scale, s4 * scale, s5 * scale, p, mu_max, mu_p_new, D, dep
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2, d3, d4, d5, rate, q):
+    """One HJC stress update of a material point (hypo-elastic, radial return), on scalars.
+
+    s0..s5: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
+    components), already rotated (Jaumann) by the caller; eps_p: plastic
+    strain accumulated so far (erosion criterion); d0..d5: total strain
+    increment (same layout, tensor shear). Returns the new s0..s5, p, mu_max,
+    mu_p, D and the plastic strain increment. Without data-dependent branches:
+    the yield surface is evaluated at every call and the return selected. In two halves (trial_state,
+    radial_return) around the surface, which the FE level's element pass evaluates apart for a row's points.
+    """
+    s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below = trial_state(s0, s1, s2, s3, s4, s5, mu, mu_max, D,
+                                                                          eps_p, d0, d1, d2, d3, d4, d5, q)
+    return radial_return(s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below, mu_p, D,
+                         yield_stress(p, D, eps_p, rate, q), fracture_strain(p, q), q)
+
+
+@njit(cache=True, error_model="numpy")   # the selects divide by zero where they then take the other value
 def update_point(s, mu, mu_max, mu_p, D, eps_p, deps, rate, q):
     """update_voigt on an array s (updated in place); returns p, mu_max, mu_p, D and the plastic strain increment."""
     s[0], s[1], s[2], s[3], s[4], s[5], p, mu_max, mu_p, D, dep = update_voigt(

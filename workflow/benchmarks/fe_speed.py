@@ -40,7 +40,7 @@ from penetration.fe.element_pass import element_pass
 from penetration.fe.mesh import MeshSpec, build
 from penetration.fe.model import Controls, Model
 from penetration.fe.nodes import move as move_nodes, node_pass
-from penetration.hjc import HJC
+from penetration.hjc import HJC, strength
 
 DO1 = "results/fe/full/do1/double_ogive_835.json"
 
@@ -76,12 +76,13 @@ def _snapshot(arrays):
 
 def _best_split(passes, steps, repeat, restore=None):
     """Seconds per step of each of `passes` (callables run in order as one step) in the batch whose total was the
-    best of `repeat` batches of `steps` steps (the host's noise only ever adds time). With `restore`, every batch
+    best of `repeat` batches of `steps` steps (the host's noise only ever adds time), and every batch's seconds per
+    step (the runs, printed beside the best). With `restore`, every batch
     starts from the same state (restore(), untimed), for a state that evolves: the DO1 window's crushed zone
     relaxes once no projectile pushes it, and batches carried on would time ever cheaper states. The elastic
     states are stationary (small waves) and carry on: restoring the deep mesh's 105 MiB before a batch would
     time its write-back as well."""
-    best = None
+    best, runs = None, []
     for _ in range(repeat):
         if restore is not None:
             restore()
@@ -91,14 +92,44 @@ def _best_split(passes, steps, repeat, restore=None):
                 t0 = time.perf_counter()
                 p()
                 spent[k] += time.perf_counter() - t0
+        runs.append(sum(spent) / steps)
         if best is None or sum(spent) < sum(best):
             best = spent
-    return [x / steps for x in best]
+    return [x / steps for x in best], runs
 
 
 def _best(step, steps, repeat, restore=None):
-    """Seconds per step of `step`, the best of `repeat` batches of `steps` steps (each from restore()'s state)."""
-    return _best_split((step,), steps, repeat, restore)[0]
+    """Seconds per step of `step`, the best of `repeat` batches of `steps` steps (each from restore()'s state), and
+    every batch's."""
+    split, runs = _best_split((step,), steps, repeat, restore)
+    return split[0], runs
+
+
+def _runs(runs, per=1.0):
+    """The batches' times per element-step, in ns, as printed: 'a, b, c'."""
+    return ", ".join(f"{x / per * 1e9:.1f}" for x in runs)
+
+
+@njit(parallel=True, cache=True)
+def _strengths(p, D, rate, q, out):
+    for i in prange(p.size):
+        out[i] = strength(p[i], D[i], rate[i], q)
+
+
+def transcendental_time(m: Model, repeat):
+    """Seconds per element of HJC's strength surface alone (hjc.strength: a logarithm for the rate and a power for the
+    pressure, libm's, scalar: numba's LLVM has no vector library for them) over the elements' pressures, damages and
+    equivalent rates of the present state, best of `repeat`, on the threads set: a bound below which the yielding
+    state's element pass cannot go while each yielding element evaluates the surface."""
+    ne = m.grid.elements
+    p = np.ascontiguousarray(m.E[fe_state.P])
+    D = np.ascontiguousarray(m.E[fe_state.DMG])
+    rate = np.full(ne, 600.0)   # the plastic state's equivalent rate: sqrt(2/3 d:d) with d = a (1, 1, -2), a = 300/s
+    out = np.empty(ne)
+    _strengths(p, D, rate, m.q, out)
+    n = max(20, int(2e6 / ne))
+    best = min(_timed(lambda: [_strengths(p, D, rate, m.q, out) for _ in range(n)]) for _ in range(repeat))
+    return best / n / ne
 
 
 def last_level_cache():
@@ -166,7 +197,8 @@ def _elastic_time(spec: MeshSpec, repeat, element_steps=6e6):
     step()
     ne = m.grid.elements
     n = max(20, int(element_steps / ne))
-    return _best(step, n, repeat) / ne, ne, step_bytes(m)
+    best, runs = _best(step, n, repeat)
+    return best / ne, [x / ne for x in runs], ne, step_bytes(m)
 
 
 def _window_step_time(m: Model, steps, repeat):
@@ -190,7 +222,9 @@ def _window_step_time(m: Model, steps, repeat):
     grow = (E[fe_state.EPSP, w] > m.E[fe_state.EPSP, w]) | (E[fe_state.MUP, w] > m.E[fe_state.MUP, w])
     live = m.alive[w] == fe_state.LIVE
     flowing = float((grow & live).sum() / max(live.sum(), 1))
-    return _best(step, steps, repeat, _snapshot((r, z, vr, vz, E, alive, F))) / ((m.j1 - m.j0) * m.nr), flowing
+    per = (m.j1 - m.j0) * m.nr
+    best, runs = _best(step, steps, repeat, _snapshot((r, z, vr, vz, E, alive, F)))
+    return best / per, [x / per for x in runs], flowing
 
 
 def main():
@@ -253,21 +287,28 @@ def main():
             m.vr[m.on_axis] = 0.0
         step()
         restore = _snapshot((m.r, m.z, m.vr, m.vz, m.E, m.alive, m.F)) if label == "plastic" else None
-        split = [x / ne for x in _best_split((node, move, element), args.steps, args.repeat, restore)]
+        split, runs = _best_split((node, move, element), args.steps, args.repeat, restore)
+        split = [x / ne for x in split]
         per = times[label] = sum(split)
         yielded = float((m.E[fe_state.EPSP] > 0).mean())
         live = float((m.alive == fe_state.LIVE).mean())
-        print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step; "
-              f"node pass {split[0] * 1e9:.1f}, move {split[1] * 1e9:.1f}, element pass {split[2] * 1e9:.1f} ns")
+        print(f"{label} ({yielded:.0%} of the elements yielded, {live:.0%} live): {per * 1e9:.1f} ns per element-step "
+              f"(runs {_runs(runs, ne)}); node pass {split[0] * 1e9:.1f}, move {split[1] * 1e9:.1f}, element pass "
+              f"{split[2] * 1e9:.1f} ns")
+        if label == "plastic":
+            surface = times["strength surface alone (log, pow)"] = transcendental_time(m, args.repeat)
+            print(f"  of which HJC's strength surface alone (libm log and pow, scalar) takes {surface * 1e9:.1f} ns per "
+                  "element")
     # cache or memory? The arrays of the benchmark mesh (and of the DO1 window) fit in the last-level cache of the
     # hosts seen; the same elastic state over the same columns made deep enough to move at least twice that cache
     # (16 times as deep or more) moves them from and to memory every step
     deeper = max(16, math.ceil(2 * (llc or 0) / bytes_total))
-    deep, nd, bd = _elastic_time(MeshSpec(args.size, 0.21, 2.5 * deeper, 1.2, 2.5 * deeper, 1.1), args.repeat)
+    deep, deep_runs, nd, bd = _elastic_time(MeshSpec(args.size, 0.21, 2.5 * deeper, 1.2, 2.5 * deeper, 1.1), args.repeat)
     label = f"elastic, {deeper} times as deep"
     times[label] = deep
     print(f"{label} ({nd} elements, {bd / 2**20:.0f} MiB moved per step): {deep * 1e9:.1f} ns per "
-          f"element-step, {deep / times['elastic']:.2f} x the benchmark mesh's ({bytes_total / 2**20:.0f} MiB)")
+          f"element-step (runs {_runs(deep_runs)}), {deep / times['elastic']:.2f} x the benchmark mesh's "
+          f"({bytes_total / 2**20:.0f} MiB)")
     if args.do1:
         from penetration.fe import shot as fe_shot
         from penetration.fe.shot import RunSpec, Settings, run_shot
@@ -284,8 +325,8 @@ def main():
             def cb(mm, t):
                 callback(mm, t)
                 if "t" not in snap and t >= 6e-3:
-                    per, flowing = _window_step_time(mm, args.steps, args.repeat)
-                    snap.update(t=t, per=per, flowing=flowing, window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[fe_state.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
+                    per, runs, flowing = _window_step_time(mm, args.steps, args.repeat)
+                    snap.update(t=t, per=per, runs=runs, flowing=flowing, window=(mm.j1 - mm.j0) * mm.nr, yielded=float((mm.E[fe_state.EPSP, mm.j0 * mm.nr:mm.j1 * mm.nr] > 0).mean()))
             return solver_run(model, projectile, callback=cb)
 
         fe_shot.run = run_with_snapshot
@@ -295,7 +336,7 @@ def main():
         fe_shot.run = solver_run
         print(f"DO1 state at t = {snap['t'] * 1e3:.1f} ms ({snap['window']} elements in the window, {snap['yielded']:.0%} of them "
               f"yielded so far, {snap['flowing']:.1%} of the live ones flowing or crushing in a step): "
-              f"{snap['per'] * 1e9:.1f} ns per element-step")
+              f"{snap['per'] * 1e9:.1f} ns per element-step (runs {_runs(snap['runs'])})")
         times["DO1 window"] = snap["per"]
         s = r.summary()
         same = "the same bit for bit" if r.depth == ref["depth_m"] else f"DIFFERENT from the pipeline's {ref['depth_m']!r} m"
@@ -303,6 +344,9 @@ def main():
               f"results/fe/full/do1), wall {r.wall_time:.1f} s "
               f"(target 60 s: {r.wall_time / 60:.2f} of it), {r.steps} steps, {r.elements} elements in the mesh, "
               f"{s['element_steps'] / r.wall_time / 1e6:.1f} M mesh element-steps/s")
+        shares = ", ".join(f"{k} {v:.1%}" for k, v in r.dt_shares.items())
+        print(f"DO1's time step: controlled by {shares} of the steps (solver.timestep criteria); the last step by "
+              f"{r.dt_control}")
     # the floor from the higher of two bandwidths, one before and one after the timings (a neighbour's load on a
     # shared host lowers a STREAM measurement, and a lower bandwidth would flatter the ratio)
     bw1 = stream_triad()
@@ -311,6 +355,9 @@ def main():
     print(f"STREAM triad at the end: {bw1 / 1e9:.1f} GB/s; floor {floor * 1e9:.1f} ns (bytes per element-step over the higher "
           f"bandwidth, {bw / 1e9:.1f} GB/s). Targets: <= 30 ns and <= 2 x the floor")
     for label, per in times.items():
+        if label.startswith("strength surface"):
+            print(f"  {label}: {per * 1e9:.1f} ns = {per / floor:.2f} x the floor (a part of the plastic state's step)")
+            continue
         met = [target for target, hit in (("30 ns", per <= 30e-9), ("2 x the floor", per <= 2 * floor)) if hit]
         print(f"  {label}: {per * 1e9:.1f} ns = {per / floor:.2f} x the floor (met: {', '.join(met) or 'neither'})")
     if args.record:
