@@ -121,3 +121,18 @@ def test_rules_take_the_files_a_scene_extends_as_inputs(monkeypatch):
         pass
     assert wild["scene_bases"](W(scene="do1")) == ["workflow/scenes/do1.yaml"]
     assert scene_input("workflow/scenes/sec22_450kg.yaml")["scene_bases"] == []
+
+
+def test_tasks_and_figures_read_scenes_and_configs_through_their_loaders():
+    """A scene read as plain YAML misses the case it extends (a KeyError on its noses); every task and figure module
+    reads scenes through penetration.scenes and configs through penetration.config, never yaml itself."""
+    import ast
+    pkg = ROOT / "src/penetration"
+    readers = []
+    for f in sorted((pkg / "tasks").glob("*.py")) + sorted((pkg / "figures").glob("*.py")):
+        for node in ast.walk(ast.parse(f.read_text())):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            if any(n.split(".")[0] == "yaml" for n in names):
+                readers.append(f.name)
+    assert readers == []

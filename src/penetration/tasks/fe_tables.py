@@ -6,16 +6,15 @@ and ``penetration.diff``, and writes under figures/fe/{profile}/.
 """
 from __future__ import annotations
 
-from pathlib import Path
 
 import pandas as pd
-import yaml
 
 from .. import diff as D
 from .. import fe_studies
 from ..figures.fe_level import contrasts_figure, shots_frame
 from ..io import committed_study, load_json, task, write_csv, write_json, write_text
 from ..reference import TABLE3_NOSES, VELOCITIES, load_reference
+from ..scenes import scene_data
 
 
 def _paper_table3(refs):
@@ -34,7 +33,7 @@ def fe_table3(inputs, outputs, params):
     refs = load_reference(inputs.reference)
     shots = shots_frame(inputs.shots)
     cal = load_json(inputs.cal)["data"]
-    noses = yaml.safe_load(Path(inputs.scene).read_text())["noses"]
+    noses = scene_data(inputs.scene)["noses"]   # the scene with the paper's case it extends
     calibrated = {n for n, spec in noses.items() if spec.get("inferred") == cal["nose"]}
     t = fe_studies.table3_rows(shots, _paper_table3(refs), calibrated, cal["vs"])
     write_csv(t, outputs.csv)
