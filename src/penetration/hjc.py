@@ -489,7 +489,8 @@ def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2,
     increment (same layout, tensor shear). Returns the new s0..s5, p, mu_max,
     mu_p, D and the plastic strain increment. Without data-dependent branches:
     the yield surface is evaluated at every call and the return selected. In two halves (trial_state,
-    radial_return) around the surface, which the FE level's element pass evaluates apart for a row's points.
+    radial_return) around the surface, so that a loop over many points can take the surface's logarithm and power
+    apart (surface_arguments, strength_of) and vectorise the rest.
     """
     s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below = trial_state(s0, s1, s2, s3, s4, s5, mu, mu_max, D,
                                                                           eps_p, d0, d1, d2, d3, d4, d5, q)

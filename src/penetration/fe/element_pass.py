@@ -1,6 +1,6 @@
 """The element pass: every active element row's kinematics, stress, energy, stable step, erosion and forces.
 
-Rows j0 <= j < j1 (the active window), in chunks of ROWS_PER_CHUNK rows per parallel task. Each row in four
+Rows j0 <= j < j1 (the active window), in chunks of ROWS_PER_CHUNK rows per parallel task. Each row in three
 phases, which call the same helpers (``element``, ``constitutive``, ``timestep``, ``erosion``), so each formula
 exists once:
 
@@ -8,17 +8,9 @@ exists once:
    rotated deviator, and, for HJC, the shortcut update (``hjc.quick_update``: no crush and no plastic flow, or
    fully damaged outside compression) with its energy, viscosity and stable step, stored where valid; the
    element is DONE when it also passes the scalar phase's checks (finite, not eroding, step above the floor);
-2. for an HJC row with elements phase 1 left to the full update: the full HJC update of those elements in three
-   loops (``_flow``): the trial states and the arguments of the strength surface's logarithm and powers
-   (vectorised), the logarithms and powers (scalar: numba's LLVM has no vector library for them), and the return,
-   energy, viscosity and stable step (vectorised, ``hjc.trial_state`` and ``hjc.radial_return``, the halves of the
-   scalar update); these elements then take the scalar phase's checks as CHECK;
-3. scalar, for the others: the full material update (``constitutive.update``), the erosion criterion and the
-   guards, and the checks of the elements completed before;
-4. forces (vectorised): internal and hourglass forces at the new geometry (``element.row_forces``).
-
-The full HJC update of phase 2 gives the scalar update's results bit for bit: the same operations in the same
-order, the scalar update's own halves, and libm's logarithm and power.
+2. scalar, for the others: the full material update (``constitutive.update``), the erosion criterion and the
+   guards;
+3. forces (vectorised): internal and hourglass forces at the new geometry (``element.row_forces``).
 
 Element states (``state``): LIVE, ERODED, INACTIVE (below the window), RETIRED (behind it); an element that erodes
 in this pass is set to ERODING. Per row j (``Rows``): the smallest stable step with its element and criterion,
@@ -31,16 +23,15 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..hjc import (I_D2, I_HOOP, I_N, fracture_argument, fracture_strain_of, power_chords, quick_update, radial_return,
-                   spent, strength_of, surface_arguments, trial_state)
+from ..hjc import I_HOOP, power_chords, quick_update
 from .constitutive import HJC_KIND, longitudinal_modulus, update, wave_speed
 from .element import corners, energy_increment, equivalent_rate, length, moment, rates, rotate, row_forces, sound_shape
 from .erosion import erodes
 from .state import (BAD_SHAPE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, CHECK, DONE,
-                    DT_COLLAPSE, DMG, EPSEFF, EPSP, ERODING, FAST, IE, INVERTED, LIVE, MUMAX, MUP, N_SCRATCH,
-                    NON_FINITE, P, QV, ROWS_PER_CHUNK, S_C, S_DRR, S_DRZ, S_DT, S_DTT, S_DZZ, S_FRAC, S_LC, S_LOG, S_MU,
-                    S_POW, S_R0, S_R1, S_R3, S_RATE, S_STATE, S_TV, S_VH, SCALAR, SKIP, SRR, SRZ, STT, SZZ, TWO_PI, V0,
-                    RF_DT, RF_ERO, RF_HG, RI_ARG, RI_CODE, RI_CRIT, RI_FAIL, VR, VZ)
+                    DT_COLLAPSE, DMG, EPSEFF, EPSP, ERODING, FAST, IE, INVERTED, LIVE, MUMAX, N_SCRATCH, NON_FINITE, P,
+                    QV, ROWS_PER_CHUNK, S_C, S_DRR, S_DRZ, S_DT, S_DTT, S_DZZ, S_LC, S_MU, S_R0, S_R1, S_R3, S_RATE,
+                    S_STATE, S_TV, S_VH, SCALAR, SKIP, SRR, SRZ, STT, SZZ, TWO_PI, V0, RF_DT, RF_ERO, RF_HG, RI_ARG,
+                    RI_CODE, RI_CRIT, RI_FAIL, VR, VZ)
 from .timestep import NO_STEP, criterion, row_step, stable_step, viscosity
 
 N_HJC = I_HOOP + 1  # length of an HJC parameter array
@@ -119,91 +110,6 @@ def _kinematics(j, nr, X, V, E, alive, kind, q, chords, ctl, S):
         S[S_LC, i] = lc
         S[S_C, i] = c if fast else 0.0
         S[S_DT, i] = dte
-
-
-@njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
-def _surface_arguments(j, nr, E, q, ctl, S):
-    """Phase 2's first loop (vectorised): for every element of row j (used where SCALAR), the arguments of its
-    strength surface's logarithm and power and of its fracture strain's power at the trial pressure."""
-    dt = ctl[C_DT]
-    un = np.uint64(nr)
-    e0 = np.uint64(j) * un
-    for i in range(un):
-        e = e0 + i
-        _, _, _, _, _, _, p, _, _, _, _ = trial_state(
-            S[S_R0, i], S[S_R1, i], E[STT, e], S[S_R3, i], 0.0, 0.0, S[S_MU, i] - 1.0, E[MUMAX, e], E[DMG, e],
-            E[EPSP, e], S[S_DRR, i] * dt, S[S_DZZ, i] * dt, S[S_DTT, i] * dt, S[S_DRZ, i] * dt, 0.0, 0.0, q)
-        r, x = surface_arguments(p, S[S_RATE, i], q)
-        S[S_LOG, i] = r
-        S[S_POW, i] = x
-        S[S_FRAC, i] = fracture_argument(p, q)
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _surface_powers(nr, q, S):
-    """Phase 2's second loop (scalar): the logarithm and powers of the row's SCALAR elements, in place (libm's, as
-    hjc.strength and hjc.fracture_strain take them)."""
-    n, d2 = q[I_N], q[I_D2]
-    for i in range(nr):
-        if S[S_STATE, i] == SCALAR:
-            S[S_LOG, i] = math.log(S[S_LOG, i])
-            S[S_POW, i] = S[S_POW, i] ** n
-            x = S[S_FRAC, i]
-            S[S_FRAC, i] = x if d2 == 1.0 else x ** d2
-
-
-@njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
-def _return(j, nr, E, kind, q, ctl, S):
-    """Phase 2's third loop (vectorised, selects): the SCALAR elements' full HJC update from their surface terms,
-    with their energy, viscosity, wave speed and stable step, as _scalar_update computes them; they become CHECK."""
-    dt, q1, q2 = ctl[C_DT], ctl[C_Q1], ctl[C_Q2]
-    un = np.uint64(nr)
-    e0 = np.uint64(j) * un
-    for i in range(un):
-        e = e0 + i
-        go = S[S_STATE, i] == SCALAR
-        de0, de1, de2, de3 = S[S_DRR, i] * dt, S[S_DZZ, i] * dt, S[S_DTT, i] * dt, S[S_DRZ, i] * dt
-        n0, n1, n2, n3, n4, n5, p, mm, mpn, seq, below = trial_state(
-            S[S_R0, i], S[S_R1, i], E[STT, e], S[S_R3, i], 0.0, 0.0, S[S_MU, i] - 1.0, E[MUMAX, e], E[DMG, e],
-            E[EPSP, e], de0, de1, de2, de3, 0.0, 0.0, q)
-        D, eps_p, mu_ratio = E[DMG, e], E[EPSP, e], S[S_MU, i]
-        sy = spent(strength_of(S[S_LOG, i], S[S_POW, i], p, D, q), eps_p, q)
-        ef = fracture_strain_of(fracture_argument(p, q), S[S_FRAC, i], q)
-        n0, n1, n2, n3, _, _, pn, mumax, mup, dmg, dep = radial_return(n0, n1, n2, n3, n4, n5, p, mm, mpn, seq, below,
-                                                                       E[MUP, e], D, sy, ef, q)
-        old = (E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e])
-        rho = q[0] * mu_ratio
-        c = wave_speed(longitudinal_modulus(kind, q, mu_ratio - 1.0, mumax), rho)
-        tv, lc = S[S_TV, i], S[S_LC, i]
-        qv = viscosity(rho, lc, c, tv, q1, q2)
-        ie_new = E[IE, e] + energy_increment(S[S_VH, i], old, (n0, n1, n2, n3, pn), (de0, de1, de2, de3), qv, tv, dt)
-        dte = stable_step(lc, c, tv, q1, q2)
-        E[SRR, e] = n0 if go else old[0]
-        E[SZZ, e] = n1 if go else old[1]
-        E[STT, e] = n2 if go else old[2]
-        E[SRZ, e] = n3 if go else old[3]
-        E[P, e] = pn if go else old[4]
-        E[MUMAX, e] = mumax if go else E[MUMAX, e]
-        E[MUP, e] = mup if go else E[MUP, e]
-        E[DMG, e] = dmg if go else D
-        E[EPSP, e] = eps_p + dep if go else eps_p
-        E[EPSEFF, e] = E[EPSEFF, e] + S[S_RATE, i] * dt if go else E[EPSEFF, e]
-        E[IE, e] = ie_new if go else E[IE, e]
-        E[QV, e] = qv if go else E[QV, e]
-        S[S_C, i] = c if go else S[S_C, i]
-        S[S_DT, i] = dte if go else S[S_DT, i]
-        S[S_STATE, i] = CHECK if go else S[S_STATE, i]
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _flow(j, nr, E, kind, q, ctl, S):
-    """Phase 2 of an HJC row: the full update of the elements phase 1 left (SCALAR), if any."""
-    for i in range(nr):
-        if S[S_STATE, i] == SCALAR:
-            _surface_arguments(j, nr, E, q, ctl, S)
-            _surface_powers(nr, q, S)
-            _return(j, nr, E, kind, q, ctl, S)
-            return
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -285,7 +191,5 @@ def element_pass(span, X, V, kind, q, ctl, E, F, alive, rf, ri):
         S = np.empty((N_SCRATCH, nr))
         for j in range(j0 + ch * ROWS_PER_CHUNK, min(j1, j0 + (ch + 1) * ROWS_PER_CHUNK)):
             _kinematics(j, nr, X, V, E, alive, kind, qf, chords, ctl, S)
-            if kind == HJC_KIND:
-                _flow(j, nr, E, kind, q, ctl, S)
             _scalar(j, nr, E, alive, kind, q, ctl, rf, ri, S)
             rf[RF_HG, j] = row_forces(j, nr, X, V, E, F, alive, ctl[C_QH], ctl[C_DT], S)

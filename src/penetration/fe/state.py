@@ -40,9 +40,7 @@ STEP_STORES = (SRR, SZZ, STT, SRZ, P, MUMAX, QV, IE, EPSEFF, EPSP)
 
 # ---- scratch rows of one element row (kinematics phase -> scalar phase -> force phase), and the scratch states
 (S_DRR, S_DZZ, S_DTT, S_DRZ, S_RATE, S_MU, S_TV, S_VH, S_STATE, S_R0, S_R1, S_R3, S_LC, S_C, S_DT, S_HG,
- S_LOG, S_POW, S_FRAC, N_SCRATCH) = range(20)
-# S_LOG, S_POW, S_FRAC: an HJC element's strength-surface logarithm and power and its fracture strain's power (their
-# arguments, then their values: element_pass computes them in a scalar loop of their own)
+ N_SCRATCH) = range(17)
 # S_STATE: SKIP the element is not live; DONE live, completed by the kinematics phase (hjc.quick_update) and
 # through the scalar phase's checks; SCALAR live, needs the scalar material update; BAD_SHAPE live with an inverted
 # or degenerate geometry; CHECK live, completed by the kinematics phase but caught by a check (non-finite, eroding,
