@@ -350,10 +350,10 @@ def _size_problems(cfg, source, refs):
              + _paths(cfg, "fe_convergence.profiles.*") + _paths(cfg, "fe_band.bands.*.*"))
     for where, across in sizes:
         h = element_size(radius, across)
-        s = _fe_settings(fe, h)
         n = fe_mesh_elements(h, fe, radius, depth)
         need = n * FE_BYTES_PER_ELEMENT
         if need > ram:
+            s = _fe_settings(fe, h)
             lo, hi = h, 1.0  # the smallest element size whose mesh fits (the count falls as h grows)
             while hi - lo > 1e-3 * lo:
                 mid = math.sqrt(lo * hi)

@@ -104,31 +104,38 @@ def merge_patch(target, patch):
     return out
 
 
+def _chain(path) -> list:
+    """(file, its mapping) for the scene file and each file it extends in turn, each file read once."""
+    chain = []
+    nxt = Path(path)
+    while True:
+        data = config.read_yaml(nxt) or {}
+        chain.append((nxt, data))
+        base = data.get(EXTENDS) if isinstance(data, dict) else None
+        if base is None:
+            return chain
+        here = chain[-1][0]
+        if not isinstance(base, str):
+            raise SceneError(f"{here}: {EXTENDS}: {base!r}; allowed: the path of a scene file, relative to this one")
+        nxt = Path(os.path.normpath(here.parent / base))
+        if not nxt.is_file():
+            raise SceneError(f"{here}: {EXTENDS}: {base!r}: no such file ({nxt})")
+        files = [f for f, _ in chain]
+        if nxt.resolve() in [f.resolve() for f in files] or len(files) > MAX_EXTENDS:
+            raise SceneError(f"{here}: {EXTENDS}: {base!r} makes a cycle or a chain longer than {MAX_EXTENDS}: "
+                             f"{' -> '.join(str(f) for f in files + [nxt])}")
+
+
 def scene_files(path) -> list:
     """The files a scene is made of: the file itself, then the file it extends, and so on (a rule's inputs, so that
     a change to the paper's case reruns every level's scene of it)."""
-    files = [Path(path)]
-    while True:
-        data = config.read_yaml(files[-1]) or {}
-        base = data.get(EXTENDS) if isinstance(data, dict) else None
-        if base is None:
-            return [str(f) for f in files]
-        if not isinstance(base, str):
-            raise SceneError(f"{files[-1]}: {EXTENDS}: {base!r}; allowed: the path of a scene file, relative to this one")
-        nxt = Path(os.path.normpath(files[-1].parent / base))
-        if not nxt.is_file():
-            raise SceneError(f"{files[-1]}: {EXTENDS}: {base!r}: no such file ({nxt})")
-        if nxt.resolve() in [f.resolve() for f in files] or len(files) > MAX_EXTENDS:
-            raise SceneError(f"{files[-1]}: {EXTENDS}: {base!r} makes a cycle or a chain longer than {MAX_EXTENDS}: "
-                             f"{' -> '.join(str(f) for f in files + [nxt])}")
-        files.append(nxt)
+    return [str(f) for f, _ in _chain(path)]
 
 
 def scene_data(path) -> dict:
     """A scene file's mapping, the files it extends merged in (merge_patch, the base first); not yet validated."""
     merged = {}
-    for f in reversed(scene_files(path)):
-        data = config.read_yaml(f) or {}
+    for _, data in reversed(_chain(path)):
         merged = merge_patch(merged, {k: v for k, v in data.items() if k != EXTENDS})
     return merged
 
