@@ -280,26 +280,17 @@ def cutoff(p, D, q):
 
 
 @njit(cache=True, inline="always")
-def surface_arguments(p, rate, q):
-    """The arguments of the strength surface's two transcendental terms at pressure p and equivalent strain rate:
-    the strain-rate ratio whose logarithm the rate factor takes (1 where the factor is 1: the rate floor, r = 1,
-    r <= 0 or NaN; ln 1 = 0 exactly, and C = 0 switches the term off) and the normalised pressure max(p/fc, 0)
-    whose power N the compressive branch takes. A loop that evaluates the surface for many points takes the
-    logarithms and powers of these in a scalar loop of their own (numba's LLVM has no vector library for them)
-    and the rest vectorised (strength_of)."""
+def strength(p, D, rate, q):
+    """Yield stress sigma_y (Pa) at pressure p, damage D, equivalent strain rate (1/s)."""
+    fc = q[I_FC]
     r = rate / q[I_EPS0]
     r = max(r, 1.0) if q[I_RATEFLOOR] > 0.5 else r
-    return (r if ((r > 0.0) & (r != 1.0)) else 1.0), max(p / q[I_FC], 0.0)
-
-
-@njit(cache=True, inline="always")
-def strength_of(ln_rate, power, p, D, q):
-    """Yield stress sigma_y (Pa) at pressure p and damage D from the surface's transcendental terms: ln_rate the
-    logarithm and power the N-th power of surface_arguments' two values."""
-    fc = q[I_FC]
-    factor = 1.0 + q[I_C] * ln_rate
+    # ln 1 = 0 exactly: r = 1 (or r <= 0, NaN) gives the factor 1, and C = 0 switches the rate term off
+    factor = 1.0 + q[I_C] * math.log(r if ((r > 0.0) & (r != 1.0)) else 1.0)
     ps = p / fc
-    comp = q[I_A] * (1.0 - D) + q[I_B] * power
+    comp = q[I_A] * (1.0 - D) + q[I_B] * max(ps, 0.0) ** q[I_N]
+    # both tensile branches computed, one selected (parameters read before a select, & for and: numba's reference
+    # counting of q on short-circuit branches, and loads under a condition, keep a loop over points scalar)
     tens_linear = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D)
     tens_offset = q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
     tens = tens_linear if q[I_TENSION] < 0.5 else tens_offset
@@ -309,43 +300,20 @@ def strength_of(ln_rate, power, p, D, q):
 
 
 @njit(cache=True, inline="always")
-def strength(p, D, rate, q):
-    """Yield stress sigma_y (Pa) at pressure p, damage D, equivalent strain rate (1/s)."""
-    r, x = surface_arguments(p, rate, q)
-    return strength_of(math.log(r), x ** q[I_N], p, D, q)
-
-
-@njit(cache=True, inline="always")
-def spent(sy, eps_p, q):
-    """The yield stress sy, or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
-    return 0.0 if eps_p >= q[I_EROSION] else sy
-
-
-@njit(cache=True, inline="always")
 def yield_stress(p, D, eps_p, rate, q):
     """strength(), or 0 once the accumulated plastic strain eps_p reaches erosion_strain."""
-    return spent(strength(p, D, rate, q), eps_p, q)
-
-
-@njit(cache=True, inline="always")
-def fracture_argument(p, q):
-    """P* + T* of Eq 18, whose power D2 the fracture strain takes."""
-    return (p + q[I_T]) / q[I_FC]
-
-
-@njit(cache=True, inline="always")
-def fracture_strain_of(x, power, q):
-    """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18, from x = P* + T* and power = x^D2."""
-    floor, grown = q[I_EFMIN], q[I_D1] * power
-    return floor if x <= 0.0 else max(floor, grown)
+    sy = strength(p, D, rate, q)
+    return 0.0 if eps_p >= q[I_EROSION] else sy
 
 
 @njit(cache=True, inline="always")
 def fracture_strain(p, q):
     """eps_p^f + mu_p^f = max(EFMIN, D1 (P* + T*)^D2), Eq 18."""
-    x = fracture_argument(p, q)
+    x = (p + q[I_T]) / q[I_FC]
     # IEEE pow gives x ** 1.0 = x exactly: the paper's D2 = 1 needs no power
-    return fracture_strain_of(x, x if q[I_D2] == 1.0 else x ** q[I_D2], q)
+    xd = x if q[I_D2] == 1.0 else x ** q[I_D2]
+    floor, grown = q[I_EFMIN], q[I_D1] * xd
+    return floor if x <= 0.0 else max(floor, grown)
 
 
 N_CHORDS = 14
@@ -441,10 +409,16 @@ def quick_update(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, rate,
 
 
 @njit(cache=True, inline="always")
-def trial_state(s0, s1, s2, s3, s4, s5, mu, mu_max, D, eps_p, d0, d1, d2, d3, d4, d5, q):
-    """The first half of update_voigt, up to the strength surface: the elastic trial deviator s0..s5, the pressure
-    (EOS and tensile cut-off), the new mu_max and mu_p, the trial equivalent stress, and whether it lies below a
-    lower bound of the surface (no flow, whatever the surface's value)."""
+def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2, d3, d4, d5, rate, q):
+    """One HJC stress update of a material point (hypo-elastic, radial return), on scalars.
+
+    s0..s5: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
+    components), already rotated (Jaumann) by the caller; eps_p: plastic
+    strain accumulated so far (erosion criterion); d0..d5: total strain
+    increment (same layout, tensor shear). Returns the new s0..s5, p, mu_max,
+    mu_p, D and the plastic strain increment. Without data-dependent branches:
+    the yield surface is evaluated at every call and the return selected.
+    """
     G = q[I_G]
     s0, s1, s2, s3 = deviatoric_trial(s0, s1, s2, s3, d0, d1, d2, d3, G)
     s4 += 2.0 * G * d4
@@ -454,22 +428,14 @@ def trial_state(s0, s1, s2, s3, s4, s5, mu, mu_max, D, eps_p, d0, d1, d2, d3, d4
     seq = math.sqrt(3.0 * (0.5 * (s0 * s0 + s1 * s1 + s2 * s2) + s3 * s3 + s4 * s4 + s5 * s5))
     # below a lower bound of the surface there is no flow (with a rate factor >= 1 and p >= 0,
     # sigma_y >= scale fc min(A (1 - D), Smax)); the surface is evaluated anyway, the bound only decides
-    # (& and |, not the short-circuiting and/or: numba's reference counting of q on the branches they make keeps a
-    # loop over points from vectorising)
     below = ((p >= 0.0) & (eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0))
              & (seq <= q[I_SCALE] * q[I_FC] * min(q[I_A] * (1.0 - D), q[I_SMAX])))
-    return s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below
-
-
-@njit(cache=True, inline="always")
-def radial_return(s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below, mu_p, D, sy, ef, q):
-    """The second half of update_voigt, from the trial state (trial_state), the yield stress sy and the fracture
-    strain ef at its pressure: the radial return, the damage growth and the cut-off at the new damage. Returns the
-    new s0..s5, p, mu_max, mu_p, D and the plastic strain increment."""
+    sy = yield_stress(p, D, eps_p, rate, q)
+    ef = fracture_strain(p, q)
     flow = (not below) & (seq > sy)
     ratio = sy / seq
     scale = (ratio if seq > 0.0 else 0.0) if flow else 1.0
-    excess = (seq - sy) / (3.0 * q[I_G])
+    excess = (seq - sy) / (3.0 * G)
     dep = excess if flow else 0.0
     dmu_p = max(mu_p_new - mu_p, 0.0)
     grow = (q[I_DAMAGE] > 0.5) & (dep + dmu_p > 0.0)
@@ -477,25 +443,6 @@ def radial_return(s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below, mu_p,
     D = grown if grow else D
     p = cutoff(p, D, q)
     return s0 * scale, s1 * scale, s2 * scale, s3 * scale, s4 * scale, s5 * scale, p, mu_max, mu_p_new, D, dep
-
-
-@njit(cache=True, inline="always")
-def update_voigt(s0, s1, s2, s3, s4, s5, mu, mu_max, mu_p, D, eps_p, d0, d1, d2, d3, d4, d5, rate, q):
-    """One HJC stress update of a material point (hypo-elastic, radial return), on scalars.
-
-    s0..s5: deviatoric stress (Voigt xx, yy, zz, xy, yz, zx; shear as tensor
-    components), already rotated (Jaumann) by the caller; eps_p: plastic
-    strain accumulated so far (erosion criterion); d0..d5: total strain
-    increment (same layout, tensor shear). Returns the new s0..s5, p, mu_max,
-    mu_p, D and the plastic strain increment. Without data-dependent branches:
-    the yield surface is evaluated at every call and the return selected. In two halves (trial_state,
-    radial_return) around the surface, so that a loop over many points can take the surface's logarithm and power
-    apart (surface_arguments, strength_of) and vectorise the rest.
-    """
-    s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below = trial_state(s0, s1, s2, s3, s4, s5, mu, mu_max, D,
-                                                                          eps_p, d0, d1, d2, d3, d4, d5, q)
-    return radial_return(s0, s1, s2, s3, s4, s5, p, mu_max, mu_p_new, seq, below, mu_p, D,
-                         yield_stress(p, D, eps_p, rate, q), fracture_strain(p, q), q)
 
 
 @njit(cache=True, error_model="numpy")   # the selects divide by zero where they then take the other value
