@@ -2,13 +2,16 @@
 
 Energy balance:
 
-    KE_target + KE_projectile + IE + W_hourglass + E_eroded + W_contact + W_boundary + E_window - W_external = E_0
+    KE_target + KE_projectile + IE + W_hourglass + E_eroded + W_contact + W_boundary + E_window + E_remap
+        + E_ejecta - W_external = E_0
 
 with E_eroded the internal energy of eroded elements plus the kinetic energy of dropped free nodes, W_contact the
 kinetic energy the kinematic contact removes (its impulses are perfectly inelastic), W_boundary the work absorbed
 by non-reflecting boundaries, E_window what the moving window retired, W_external the work of loads and
-prescribed velocities. The error is reported relative to E_0 (plus |W_external|). The axial momentum balances
-likewise with the dropped nodes' momentum and the dashpots' impulse.
+prescribed velocities, E_remap the kinetic energy the erosion-free target's remap removed (``fe.rezone``) and
+E_ejecta the internal energy of its ejected elements (their mass and kinetic energy stay in the model). The error
+is reported relative to E_0 (plus |W_external|). The axial momentum balances likewise with the dropped nodes'
+momentum, the remap's and the dashpots' impulse.
 
 Each record also gives, for the steps since the previous record, the share each time-step criterion
 (``state.CRITERIA``) controlled, and the element that controlled the last of them.
@@ -40,16 +43,18 @@ class Audit:
         m, p = self.model, self.proj
         ke_t, ke_p, ie = m.kinetic_energy(), self._ke_projectile(), m.internal_energy()
         total = (ke_t + ke_p + ie + acc[A_HOURGLASS] + acc[A_BOUNDARY] + acc[A_CONTACT] + acc[A_ERODED] + m.E_eroded
-                 + m.E_window - acc[A_EXTERNAL])
-        pz = m.momentum_z() + p[B_MASS] * p[B_VELOCITY] * p[B_ACTIVE] + m.dropped_momentum_z - acc[A_BOUNDARY_IMPULSE]
+                 + m.E_window + m.E_remap + m.E_ejecta - acc[A_EXTERNAL])
+        pz = (m.momentum_z() + p[B_MASS] * p[B_VELOCITY] * p[B_ACTIVE] + m.dropped_momentum_z + m.remap_momentum_z
+              - acc[A_BOUNDARY_IMPULSE])
         scale = self.E0 + abs(acc[A_EXTERNAL])
         steps = acc[A_STEPS:A_STEPS + len(CRITERIA)]
         n = steps.sum()
         row = dict(t=m.t, steps=m.steps, ke_target=ke_t, ke_projectile=ke_p, internal=ie, hourglass=acc[A_HOURGLASS],
                    boundary=acc[A_BOUNDARY], contact=acc[A_CONTACT], eroded=acc[A_ERODED] + m.E_eroded,
-                   window=m.E_window, external=acc[A_EXTERNAL], total=total,
+                   window=m.E_window, remap=m.E_remap, ejecta=m.E_ejecta, external=acc[A_EXTERNAL], total=total,
                    energy_error=(total - self.E0) / scale if scale > 0 else 0.0, momentum_z=pz,
                    momentum_error=(pz - self.P0) / abs(self.P0) if self.P0 != 0 else pz, eroded_mass=m.eroded_mass,
+                   ejected_mass=m.ejected_mass,
                    dropped_mass=m.dropped_mass, window_mass=m.window_mass, depth=p[B_TIP], velocity=p[B_VELOCITY], dt=dt,
                    alive=int((m.alive == LIVE).sum()),
                    **{f"dt_share_{name}": (steps[c] / n if n else 0.0) for c, name in CRITERIA.items()},

@@ -11,8 +11,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .state import (ACTIVE, DAMAGE, EFFECTIVE_STRAIN, ERODED, ERODING, FREE, MASS, PLASTIC_STRAIN,
+from .state import (ACTIVE, DAMAGE, EFFECTIVE_STRAIN, EJECTED, ERODED, ERODING, FREE, IE, MASS, PLASTIC_STRAIN,
                     VOLUMETRIC_TENSION)
+
+
+class InsideTarget(RuntimeError):
+    """An element of the erosion-free target lost its shape below the struck face (it may not be removed)."""
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -30,13 +34,23 @@ def retire(model):
     just = np.flatnonzero(model.alive == ERODING)
     if just.size == 0:
         return 0
-    model.alive[just] = ERODED
-    model.eroded_mass += float(model.E[MASS, just].sum())
+    if model.erosion_free:
+        # the guard's elements are ejecta only above the struck face: none inside the target may go
+        zc = model.z[model.conn[just]].mean(axis=1)
+        inside = just[zc >= 0.0]
+        if inside.size:
+            raise InsideTarget(f"{model.where(int(inside[0]))} lost its shape inside the target at t = {model.t:.6g} s")
+        model.alive[just] = EJECTED
+        model.ejected_mass += float(model.E[MASS, just].sum())
+        model.E_ejecta += float(model.E[IE, just].sum())
+    else:
+        model.alive[just] = ERODED
+        model.eroded_mass += float(model.E[MASS, just].sum())
     nodes = model.conn[just].ravel()
     np.subtract.at(model.count, nodes, 1)
     free = np.unique(nodes[model.count[nodes] == 0])
     free = free[model.nstate[free] == ACTIVE]
-    if model.controls.drop_free_nodes:
+    if model.controls.drop_free_nodes and not model.erosion_free:
         kinetic, mass = model.drop_nodes(free)
         model.E_eroded += kinetic
         model.dropped_mass += mass

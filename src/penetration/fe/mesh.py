@@ -7,7 +7,8 @@ j (nr + 1) + i, element (i, j) has index j nr + i and nodes (i, j), (i+1, j),
 of square elements of size h surrounds the path (r <= core_radius,
 z <= core_depth); outside it the sizes grow geometrically by ``grading``.
 With ``pilot_hole`` > 0 the target starts at r0 = pilot_hole (a hole along
-the axis; no axis nodes).
+the axis; no axis nodes). With ``opened_radius`` > pilot_hole too, the first
+node columns are spaced for the tunnel the nose opens (``opened_columns``).
 """
 from __future__ import annotations
 
@@ -29,6 +30,7 @@ class MeshSpec:
     depth: float
     grading: float = 1.1
     pilot_hole: float = 0.0
+    opened_radius: float = 0.0
 
     def __post_init__(self):
         for key in ("element_size", "core_radius", "core_depth", "radius", "depth"):
@@ -39,6 +41,9 @@ class MeshSpec:
             raise ParameterError("mesh", "grading", self.grading, "1 <= grading <= 1.5 (size ratio of neighbours)")
         if not 0.0 <= self.pilot_hole < self.core_radius:
             raise ParameterError("mesh", "pilot_hole", self.pilot_hole, f"0 <= pilot_hole < core_radius = {self.core_radius} m")
+        if self.opened_radius and not 0.0 < self.pilot_hole < self.opened_radius < self.core_radius:
+            raise ParameterError("mesh", "opened_radius", self.opened_radius,
+                                 f"0, or 0 < pilot_hole = {self.pilot_hole} m < opened_radius < core_radius = {self.core_radius} m")
         if self.element_size > min(self.core_radius - self.pilot_hole, self.core_depth):
             raise ParameterError("mesh", "element_size", self.element_size,
                                  "element_size <= core_radius - pilot_hole and <= core_depth")
@@ -47,11 +52,11 @@ class MeshSpec:
             raise ParameterError("mesh", "element_size", self.element_size, "a size giving at most 5e7 elements")
 
 
-def graded(x0, core, extent, h, ratio, multiple=1):
+def graded(x0, core, extent, h, ratio, multiple=1, offset=0):
     """Node coordinates from x0: uniform cells of size h up to >= core, then growing by ``ratio`` up to extent.
 
-    multiple > 1: where graded cells are needed, their number is raised until the total count of cells is a
-    multiple of ``multiple``, and they grow by the ratio <= ``ratio`` that fills the extent with them (when
+    multiple > 1: where graded cells are needed, their number is raised until the total count of cells (with
+    ``offset`` cells before x0) is a multiple of ``multiple``, and they grow by the ratio <= ``ratio`` that fills the extent with them (when
     even uniform cells of size h would overfill it, the count is left as it is).
     """
     n_core = max(1, int(math.ceil((min(core, extent) - x0) / h - 1e-9)))
@@ -64,7 +69,7 @@ def graded(x0, core, extent, h, ratio, multiple=1):
     while sum(grown) < span:
         size *= ratio
         grown.append(size)
-    n = -(-(n_core + len(grown)) // multiple) * multiple - n_core
+    n = -(-(offset + n_core + len(grown)) // multiple) * multiple - n_core - offset
     if n > len(grown) and n * h < span:
         # h (q + q^2 + ... + q^n) grows with q from n h < span (q = 1) to > span (q = ratio): bisect for q
         lo, hi = 1.0, ratio
@@ -139,11 +144,31 @@ def polar(radii, n_theta):
     return Grid(R, -np.outer(np.cos(th), rad))
 
 
+def opened_columns(r_hole, a, h):
+    """Radii of the node columns next to a pilot hole of radius r_hole that a nose of radius a opens: the ring
+    between column i and the hole keeps its volume when the hole becomes the tunnel, so that column i then lies
+    at a + i h (r_i^2 - r_hole^2 = (a + i h)^2 - a^2); the columns stop where their spacing is back to about h."""
+    r = [r_hole]
+    i = 1
+    while True:
+        x = math.sqrt((a + i * h) ** 2 - a * a + r_hole * r_hole)
+        if x - r[-1] <= 1.05 * h:
+            return np.array(r)
+        r.append(x)
+        i += 1
+
+
 def node_lines(spec: MeshSpec):
     """(r, z): the node coordinates of the grid's columns and rows (cheap: no 2-D array is made)."""
     # columns in a multiple of the element kernels' vector width: no element of a row falls to a scalar remainder loop
-    return (graded(spec.pilot_hole, spec.core_radius, spec.radius, spec.element_size, spec.grading, VECTOR_WIDTH),
-            graded(0.0, spec.core_depth, spec.depth, spec.element_size, spec.grading))
+    h = spec.element_size
+    if spec.opened_radius:
+        first = opened_columns(spec.pilot_hole, spec.opened_radius, h)
+        rest = graded(first[-1], spec.core_radius, spec.radius, h, spec.grading, VECTOR_WIDTH, offset=first.size - 1)
+        r = np.concatenate([first[:-1], rest])
+    else:
+        r = graded(spec.pilot_hole, spec.core_radius, spec.radius, h, spec.grading, VECTOR_WIDTH)
+    return r, graded(0.0, spec.core_depth, spec.depth, h, spec.grading)
 
 
 def build(spec: MeshSpec) -> Grid:

@@ -13,10 +13,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import element_pass as _element_pass, erosion, nodes as _nodes, window
+from . import element_pass as _element_pass, erosion, nodes as _nodes, rezone as _rezone, window
 from .constitutive import impedances, material_of
 from .contact import Projectile
 from .mesh import Grid
+from .rezone import R_COUNT, R_ENERGY, R_MOMENTUM
 from .spec import Controls
 from .state import (ACTIVE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH,
                     DROPPED, EROSION_KINDS, FIX_R, FIX_Z, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Boundary, Body, Loads,
@@ -113,6 +114,12 @@ class Model:
         self.dash_base = self.dash.copy()
         self.presc_i, self.presc_v = np.zeros(0, np.int64), np.zeros((2, 0))
         self.load_i, self.load_f = np.zeros(0, np.int64), np.zeros((2, 0))
+        self.erosion_free = c.erosion_free   # the erosion-free target: its guard ejects, never erodes (fe.erosion)
+        self.ejected_mass = 0.0
+        self.E_ejecta = 0.0
+        self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.rezone: energy, momentum, moves)
+        rz = np.inf if c.rezone_radius is None else c.rezone_radius
+        self.rezone_columns = int(min(g.nr, max(2, np.searchsorted(g.R[0], rz))))
         self.dt = self._initial_dt()
         self.dt0 = self.dt
         self.ctl[C_DTMIN] = c.dt_floor * self.dt0 / c.dt_factor
@@ -206,6 +213,22 @@ class Model:
         self.vr[nodes] = 0.0
         self.vz[nodes] = 0.0
         return kinetic, float(m.sum())
+
+    def rezone(self):
+        """Rezone and remap the window's zone (``fe.rezone``); returns 0 or the element that stopped it."""
+        c = self.controls
+        return _rezone.rezone((self.nr, self.j0, self.j1, self.rezone_columns), self.X, self.V, self.E, self.alive,
+                              self.nstate, self.mass, self.material.rho0, c.rezone_quality, c.rezone_weight,
+                              self.remapped)
+
+    @property
+    def E_remap(self):
+        """Kinetic energy the rezones' remap removed (J)."""
+        return float(self.remapped[R_ENERGY])
+
+    @property
+    def remap_momentum_z(self):
+        return float(self.remapped[R_MOMENTUM])
 
     def retire_eroded(self):
         """Remove the elements eroded in the last pass (``erosion.retire``)."""

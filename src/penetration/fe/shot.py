@@ -32,8 +32,11 @@ def mesh_spec(nose, settings: Settings, target: TargetSpec, expected_depth) -> M
         depth = target.depth or 5.4
     else:
         depth = target.depth or expected_depth + settings.depth_margin
-    return MeshSpec(settings.element_size, settings.core_calibers * nose.radius,
-                    min(depth, expected_depth + 0.5 * settings.depth_margin), target.radius, depth, settings.grading)
+    h = settings.element_size
+    hole = target.pilot_hole * h if target.formulation == "erosion_free" else 0.0
+    return MeshSpec(h, settings.core_calibers * nose.radius,
+                    min(depth, expected_depth + 0.5 * settings.depth_margin), target.radius, depth, settings.grading,
+                    pilot_hole=hole, opened_radius=nose.radius if hole else 0.0)
 
 
 def model_for(nose, settings: Settings, target: TargetSpec, material, expected_depth):
@@ -42,6 +45,10 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
     behind = None if settings.window_tail is None else settings.body_length + settings.window_tail
     controls = replace(settings.controls, lateral=lateral, bottom=bottom, output_interval=settings.output_interval,
                        window_ahead=settings.window_ahead, window_behind=behind)
+    if target.formulation == "erosion_free":
+        # rezoned out to the core; the guard ejects what loses its shape above the struck face (fe.erosion)
+        controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False,
+                           rezone_radius=spec.core_radius)
     return Model(build(spec), material, controls)
 
 
@@ -136,7 +143,8 @@ class ShotResult:
                 "energy_error_max": worst, "energy_error_final": last["energy_error"],
                 "momentum_error_final": last["momentum_error"], "hourglass_over_internal": last["hourglass"] / max(ie, 1e-300),
                 "contact_loss_fraction": last["contact"] / max(last["total"], 1e-300), "attempts": self.attempts,
-                "tunnel_eroded_share": self.tunnel_eroded_share,
+                "tunnel_eroded_share": self.tunnel_eroded_share, "ejected_mass_kg": last.get("ejected_mass", 0.0),
+                "remap_energy_j": last.get("remap", 0.0),
                 **{f"dt_share_{k}": v for k, v in self.dt_shares.items()}, "dt_control": self.dt_control}
 
 

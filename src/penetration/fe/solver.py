@@ -26,12 +26,13 @@ from numba import njit
 from .audit import Audit
 from .contact import Projectile, contact
 from .element_pass import element_pass
+from .erosion import InsideTarget
 from .model import Model, body_of
 from .nodes import external, move, node_pass
 from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_HOURGLASS, A_STEPS, AT_REST, B_ACTIVE,
                     B_EXIT, B_REST_VELOCITY, B_STOP_AT_REST, B_TIP, B_VELOCITY, C_DT, EROSION, FAILED, FAILURES,
                     H_CONTACTS, H_DEPTH, H_FORCE, H_MAX_FORCE, H_T, H_VELOCITY, HISTORY, HISTORY_FULL, INITIAL, N_ACC,
-                    N_BODY, PERFORATED, REACHED, RF_ERO, RF_HG, RF_IMPULSE, RF_POWER, RI_FAIL, Record)
+                    N_BODY, PAUSED, PERFORATED, REACHED, RF_ERO, RF_HG, RF_IMPULSE, RF_POWER, RI_FAIL, Record)
 from .timestep import next_step
 
 LOG = logging.getLogger("penetration.fe")
@@ -66,9 +67,9 @@ def step(st, proj, ctl, acc, dt, dtv):
 
 
 @njit(cache=True)
-def advance(st, proj, ctl, rec, t, dt, t_stop, dt_factor, k):
+def advance(st, proj, ctl, rec, t, dt, t_stop, dt_factor, k, k_pause):
     """Steps from t (the last step dt) until t_stop, an erosion, the projectile at rest or out of the target, a
-    failure, or a full history (rec.hist from column k). Returns (status, dt, t, k)."""
+    failure, a full history (rec.hist from column k) or step k_pause. Returns (status, dt, t, k)."""
     hist, acc, ctrl = rec.hist, rec.acc, rec.ctrl
     while t < t_stop:
         dt_new, crit, element = next_step(st.rf, st.ri, st.span.nz, dt, t, dt_factor)
@@ -98,6 +99,8 @@ def advance(st, proj, ctl, rec, t, dt, t_stop, dt_factor, k):
             return PERFORATED, dt, t, k
         if k >= hist.shape[1]:
             return HISTORY_FULL, dt, t, k
+        if k >= k_pause:
+            return PAUSED, dt, t, k
     return REACHED, dt, t, k
 
 
@@ -155,13 +158,25 @@ def run(model: Model, projectile: Projectile | None = None, callback=None):
     while True:
         st = State(model.span(), model.nodes(), model.kind, model.q, model.boundary(), model.loads(), body, model.E,
                    model.F, model.alive, model.X, model.V, model.rows.f, model.rows.i)
+        k_pause = k + c.rezone_every if c.erosion_free else np.iinfo(np.int64).max
         code, dt, model.t, k_new = advance(st, proj, model.ctl, rec, model.t, dt,
-                                           min(next_out + c.output_interval, c.end_time), c.dt_factor, k)
+                                           min(next_out + c.output_interval, c.end_time), c.dt_factor, k, k_pause)
         model.steps += k_new - k
         k = k_new
         if code == EROSION:
-            model.retire_eroded()
-        if projectile is not None and code in (REACHED, EROSION):
+            try:
+                model.retire_eroded()
+            except InsideTarget as err:
+                status, diag = "failed", str(err)
+                break
+            if model.erosion_free:
+                rec.acc[A_ERODED] = 0.0   # the guard's elements were ejecta (booked as model.E_ejecta)
+        if c.erosion_free and code in (REACHED, PAUSED):
+            bad = model.rezone()
+            if bad:
+                status, diag = "failed", f"the remap would empty {model.where(bad)} at t = {model.t:.6g} s"
+                break
+        if projectile is not None and code in (REACHED, EROSION, PAUSED):
             model.set_window(proj[B_TIP])
         if code == FAILED:
             status, diag = "failed", _failure(model)

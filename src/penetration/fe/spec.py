@@ -54,6 +54,11 @@ class Controls:
     max_energy_error: float = 0.5  # stop (unstable) when the audit's relative error exceeds this
     window_ahead: float | None = None   # m: rows computed down to this far ahead of the tip (None: whole domain)
     window_behind: float | None = None  # m: rows further behind the tip than this are retired (None: kept)
+    erosion_free: bool = False          # the erosion-free target: rezoned, its guard ejects (fe.rezone, fe.erosion)
+    rezone_every: int = 5               # steps between its rezones
+    rezone_quality: float = 0.95        # a node is rezoned when one of its elements' quality is below this
+    rezone_weight: float = 0.5          # share of the way to the smoothed place a rezoned node moves
+    rezone_radius: float | None = None  # m: the zone's extent from the axis (None: the whole width)
 
     def __post_init__(self):
         if not 0.0 < self.dt_factor <= 1.0:
@@ -73,6 +78,16 @@ class Controls:
                 raise ParameterError("fe controls", key, v, "> 0 (m) or None")
         if not (self.end_time > 0 and self.output_interval > 0):
             raise ParameterError("fe controls", "end_time, output_interval", (self.end_time, self.output_interval), "> 0 (s)")
+        if not (isinstance(self.rezone_every, int) and 1 <= self.rezone_every <= 1000):
+            raise ParameterError("fe controls", "rezone_every", self.rezone_every, "an integer 1 <= rezone_every <= 1000 (steps)")
+        if self.erosion_free and self.erosion != "none":
+            raise ParameterError("fe controls", "erosion", self.erosion, "none for the erosion-free target")
+        if not 0.0 < self.rezone_quality <= 1.0:
+            raise ParameterError("fe controls", "rezone_quality", self.rezone_quality, "0 < rezone_quality <= 1")
+        if not 0.0 < self.rezone_weight <= 1.0:
+            raise ParameterError("fe controls", "rezone_weight", self.rezone_weight, "0 < rezone_weight <= 1")
+        if self.rezone_radius is not None and not self.rezone_radius > 0:
+            raise ParameterError("fe controls", "rezone_radius", self.rezone_radius, "> 0 (m) or None")
 
 
 
@@ -80,6 +95,9 @@ BLOCK_RADIUS = 3.6 / math.sqrt(math.pi)  # equal cross-section area with the 3.6
 
 
 TARGET_FACES = ("non_reflecting", "free")
+# eroding: the paper's counterpart (elements deleted at a failure strain); erosion_free: no element of the target
+# is deleted, the nose opens a pilot hole along the axis and the mesh near it is rezoned (fe.rezone)
+FORMULATIONS = ("eroding", "erosion_free")
 
 
 @dataclass(frozen=True)
@@ -89,6 +107,8 @@ class TargetSpec:
     depth: float | None = None   # m; None: from the expected depth (semi-infinite) or 5.4 (block)
     lateral: str | None = None   # the lateral face, one of TARGET_FACES; None: by kind (semi-infinite non-reflecting)
     bottom: str | None = None    # the bottom face, likewise
+    formulation: str = "eroding"  # one of FORMULATIONS
+    pilot_hole: float = 1.0      # erosion-free: the pilot hole's radius in element sizes (it shrinks with the mesh)
 
     def __post_init__(self):
         if self.kind not in ("semi_infinite", "block"):
@@ -97,6 +117,10 @@ class TargetSpec:
             raise ParameterError("fe target", "radius", self.radius, "> 0 (m)")
         if self.depth is not None and not self.depth > 0:
             raise ParameterError("fe target", "depth", self.depth, "> 0 (m) or None")
+        if self.formulation not in FORMULATIONS:
+            raise ParameterError("fe target", "formulation", self.formulation, f"one of {FORMULATIONS}")
+        if not (math.isfinite(self.pilot_hole) and 0.0 < self.pilot_hole <= 4.0):
+            raise ParameterError("fe target", "pilot_hole", self.pilot_hole, "0 < pilot_hole <= 4 (element sizes)")
         for name in ("lateral", "bottom"):
             if getattr(self, name) not in (None, *TARGET_FACES):
                 raise ParameterError("fe target", name, getattr(self, name), f"one of {TARGET_FACES} or None")
@@ -104,13 +128,14 @@ class TargetSpec:
     @classmethod
     def from_scene(cls, fe, target_radius, block_depth):
         """A scene's target (its ``fe`` slice: target, target_radius, target_depth, lateral_boundary,
-        bottom_boundary): its kind's radius and depth (``target_radius``, the semi-infinite target's; the block's
+        bottom_boundary, formulation, pilot_hole): its kind's radius and depth (``target_radius``, the semi-infinite target's; the block's
         BLOCK_RADIUS and ``block_depth``) unless the scene sets them."""
         kind = fe.get("target", "semi_infinite")
         block = kind == "block"
         return cls(kind, fe.get("target_radius", BLOCK_RADIUS if block else target_radius),
                    fe.get("target_depth", block_depth if block else None),
-                   fe.get("lateral_boundary"), fe.get("bottom_boundary"))
+                   fe.get("lateral_boundary"), fe.get("bottom_boundary"), fe.get("formulation", "eroding"),
+                   fe.get("pilot_hole", 1.0))
 
     def boundary(self, face):
         """The boundary of a face ('lateral' or 'bottom'): as set, else free for the block, non-reflecting else."""
@@ -176,6 +201,9 @@ class RunSpec:
             raise ParameterError("fe shot", "expected_depth", self.expected_depth, "> 0 (m)")
         if not (math.isfinite(self.friction) and 0 <= self.friction <= 1):
             raise ParameterError("fe shot", "friction", self.friction, "0 <= friction <= 1")
+        if self.target.formulation == "erosion_free" and self.settings.controls.erosion != "none":
+            raise ParameterError("fe shot", "erosion", self.settings.controls.erosion,
+                                 "none: the erosion-free target deletes no element")
 
     def with_settings(self, settings: Settings) -> "RunSpec":
         return replace(self, settings=settings)

@@ -48,7 +48,9 @@ STEP_STORES = (SRR, SZZ, STT, SRZ, P, MUMAX, QV, IE, EPSEFF, EPSP)
 SKIP, DONE, SCALAR, BAD_SHAPE, CHECK = 0.0, 1.0, 2.0, 3.0, 4.0
 
 # ---- element states (the array alive)
-ERODED, LIVE, ERODING, INACTIVE, RETIRED = 0, 1, 2, 3, 4   # ERODING: eroded in this pass (bookkept after it)
+ERODED, LIVE, ERODING, INACTIVE, RETIRED, EJECTED = 0, 1, 2, 3, 4, 5   # ERODING: eroded in this pass (bookkept after it)
+# EJECTED: an element of the erosion-free target thrown out above the struck face that lost its shape: it carries
+# no stress from then on, its mass stays on its nodes (fe.erosion.retire)
 # ---- node states (Nodes.state); a node at DROPPED or beyond keeps its velocity and is not moved
 ACTIVE, FREE, DROPPED, WAITING = 0, 1, 2, 3   # FREE: no element left but kept; WAITING: below the window
 
@@ -63,9 +65,10 @@ CRITERIA = {INITIAL: "initial", CFL: "cfl", VISCOSITY: "viscosity", GROWTH: "gro
 N_CRITERIA = 4
 
 # ---- status of a stretch of steps (solver.advance)
-REACHED, EROSION, AT_REST, FAILED, HISTORY_FULL, PERFORATED = range(6)
+REACHED, EROSION, AT_REST, FAILED, HISTORY_FULL, PERFORATED, PAUSED = range(7)
 STEP_STATUS = {REACHED: "reached the stop time", EROSION: "an element eroded", AT_REST: "the projectile is at rest",
-               FAILED: "failed", HISTORY_FULL: "history full", PERFORATED: "the projectile's tail left the target"}
+               FAILED: "failed", HISTORY_FULL: "history full", PERFORATED: "the projectile's tail left the target",
+               PAUSED: "made the steps asked for (a rezone is due)"}
 
 # ---- controls (the array ctl)
 C_DT, C_QH, C_Q1, C_Q2, C_EROSION, C_EROSION_VALUE, C_GUARD, C_DTMIN = range(8)

@@ -1,0 +1,187 @@
+"""The erosion-free target: its pilot-hole mesh, the rezone's remap (conservation against exact oracles) and a shot
+that deletes nothing."""
+import math
+
+import numpy as np
+import pytest
+
+from penetration.errors import ParameterError
+from penetration.fe import state as S
+from penetration.fe.element import moment
+from penetration.fe.mesh import Grid, MeshSpec, build, opened_columns
+from penetration.fe.rezone import R_COUNT, R_ENERGY, R_MOMENTUM, R_MOVED, rezone
+from penetration.fe.spec import Controls, RunSpec, Settings, TargetSpec
+
+
+# ------------------------------------------------------------------ the mesh
+@pytest.mark.parametrize("r_hole, a, h", [(0.00875, 0.07, 0.00875), (0.0175, 0.07, 0.004375), (0.001, 0.05, 0.01)])
+def test_opened_columns_put_column_i_at_a_plus_i_h_once_the_hole_is_the_tunnel(r_hole, a, h):
+    """Volume of the ring between the hole and column i, kept when the hole opens to radius a: r_i^2 - r_h^2 =
+    (a + i h)^2 - a^2; the columns stop once their spacing is back to about h."""
+    r = opened_columns(r_hole, a, h)
+    i = np.arange(r.size)
+    assert r[0] == r_hole
+    np.testing.assert_allclose(np.sqrt(r ** 2 - r_hole ** 2 + a * a), a + i * h, rtol=1e-12)
+    assert np.all(np.diff(r) > 1.05 * h)
+    nxt = math.sqrt((a + r.size * h) ** 2 - a * a + r_hole * r_hole)
+    assert nxt - r[-1] <= 1.05 * h
+
+
+def test_a_pilot_hole_mesh_starts_at_the_hole_and_keeps_the_vector_width():
+    spec = MeshSpec(0.00875, 0.21, 1.0, 1.2, 1.5, 1.1, pilot_hole=0.00875, opened_radius=0.07)
+    g = build(spec)
+    assert g.r[0] == 0.00875 and g.r[-1] == pytest.approx(1.2) and g.nr % S.VECTOR_WIDTH == 0
+    np.testing.assert_allclose(g.r[:3], opened_columns(0.00875, 0.07, 0.00875)[:3])
+
+
+@pytest.mark.parametrize("kwargs, field", [(dict(pilot_hole=0.0, opened_radius=0.07), "opened_radius"),
+                                           (dict(pilot_hole=0.01, opened_radius=0.005), "opened_radius"),
+                                           (dict(pilot_hole=0.01, opened_radius=0.5), "opened_radius")])
+def test_a_mesh_refuses_an_opened_radius_out_of_range(kwargs, field):
+    with pytest.raises(ParameterError, match=field):
+        MeshSpec(0.00875, 0.21, 1.0, 1.2, 1.5, 1.1, **kwargs)
+
+
+def test_the_erosion_free_target_refuses_erosion_and_a_pilot_hole_out_of_range():
+    with pytest.raises(ParameterError, match="erosion"):
+        Controls(erosion_free=True, erosion="plastic_strain", erosion_value=1.0)
+    with pytest.raises(ParameterError, match="erosion"):
+        RunSpec(None, 81.1, 835.0, None, Settings().with_failure_strain(1.0), TargetSpec(formulation="erosion_free"))
+    with pytest.raises(ParameterError, match="pilot_hole"):
+        TargetSpec(formulation="erosion_free", pilot_hole=0.0)
+    with pytest.raises(ParameterError, match="formulation"):
+        TargetSpec(formulation="ale")
+    with pytest.raises(ParameterError, match="rezone_weight"):
+        Controls(rezone_weight=0.0)
+
+
+# ------------------------------------------------------------------ the remap
+def _distorted(nr=6, nz=5, seed=1):
+    """A tensor grid off the axis with its interior nodes displaced by up to 0.2 of a cell (every element sound)."""
+    g = Grid.tensor(0.02 + 0.01 * np.arange(nr + 1), 0.01 * np.arange(nz + 1))
+    X = np.vstack(g.nodes())
+    rng = np.random.default_rng(seed)
+    inner = [j * (nr + 1) + i for j in range(1, nz) for i in range(1, nr)]
+    X[:, inner] += rng.uniform(-0.002, 0.002, (2, len(inner)))
+    return g, X
+
+
+def _volumes(X, conn):
+    return np.array([2 * np.pi * moment(*X[0, c], *X[1, c])[0] for c in conn])
+
+
+def _state(g, X, rho, field=None, velocity=None):
+    conn = g.connectivity()
+    vol = _volumes(X, conn)
+    E = np.zeros((S.N_FIELDS, g.elements))
+    E[S.MASS] = rho * vol
+    E[S.V0] = vol
+    rc = X[0, conn].mean(axis=1)
+    if field is not None:
+        for k, f in enumerate((S.SRR, S.SZZ, S.STT, S.SRZ, S.P, S.DMG, S.EPSP)):
+            E[f] = field(rc, k)
+        E[S.IE] = E[S.MASS] * field(rc, 9)
+    mass = np.zeros(X.shape[1])
+    np.add.at(mass, conn.ravel(), np.repeat(E[S.MASS] / 4, 4))
+    V = np.zeros((4, X.shape[1]))
+    if velocity is not None:
+        V[S.VR], V[S.VZ] = velocity(X[0], X[1])
+    return E, mass, V, conn
+
+
+def _rezone(g, X, E, V, mass, quality=1.0, weight=0.5):
+    out = np.zeros(R_COUNT + 1)
+    alive = np.full(g.elements, S.LIVE, np.uint8)
+    nstate = np.full(X.shape[1], S.ACTIVE, np.int8)
+    bad = rezone((g.nr, 0, g.nz, g.nr), X, V, E, alive, nstate, mass, 2440.0, quality, weight, out)
+    return bad, out
+
+
+def test_a_uniform_density_stays_uniform_and_mass_is_conserved_exactly():
+    """The swept volumes are exact for the axisymmetric volume: a uniform density remaps to itself to round-off
+    (an approximate swept volume would leave each element's new mass and new volume at odds), and the total mass
+    and internal energy are conserved to round-off."""
+    g, X = _distorted()
+    E, mass, V, conn = _state(g, X, 2440.0, field=lambda rc, k: 1.0 + k + 0.0 * rc)
+    m0, ie0, X0 = E[S.MASS].sum(), E[S.IE].sum(), X.copy()
+    bad, out = _rezone(g, X, E, V, mass)
+    assert bad == 0 and out[R_MOVED] > 0 and np.abs(X - X0).max() > 1e-4
+    np.testing.assert_allclose(E[S.MASS] / _volumes(X, conn), 2440.0, rtol=1e-12)
+    assert E[S.MASS].sum() == pytest.approx(m0, rel=1e-14)
+    assert E[S.IE].sum() == pytest.approx(ie0, rel=1e-14)
+    np.testing.assert_allclose(E[S.V0], E[S.MASS] / 2440.0, rtol=1e-15)
+    for k, f in enumerate((S.SRR, S.SZZ, S.STT, S.SRZ, S.P, S.DMG, S.EPSP)):   # a uniform field stays uniform
+        np.testing.assert_allclose(E[f], 1.0 + k, rtol=1e-12)
+    lumped = np.zeros(X.shape[1])
+    np.add.at(lumped, conn.ravel(), np.repeat(E[S.MASS] / 4, 4))
+    np.testing.assert_allclose(mass, lumped, rtol=1e-12)
+
+
+def test_a_linear_field_is_remapped_within_the_donor_cells_first_order_error_and_conserved():
+    """A field linear in r: donor cells conserve its mass integral exactly and move each value by at most the
+    field's change over the largest node move (first order)."""
+    g, X = _distorted(seed=3)
+    E, mass, V, conn = _state(g, X, 2440.0, field=lambda rc, k: 1e6 * rc)
+    total = (E[S.MASS] * E[S.SRR]).sum()
+    before = E[S.SRR].copy()
+    X0 = X.copy()
+    bad, _ = _rezone(g, X, E, V, mass)
+    assert bad == 0
+    assert (E[S.MASS] * E[S.SRR]).sum() == pytest.approx(total, rel=1e-13)
+    move = np.abs(X - X0).max()
+    assert 0 < np.abs(E[S.SRR] - before).max() <= 1e6 * 4 * move
+
+
+def test_a_linear_velocity_field_is_taken_at_the_new_places_exactly():
+    """Velocities at the moved nodes from the elements' gradients: exact for a linear field (the quad's centre
+    gradient is exact for it); the kinetic energy and momentum the remap changes are reported."""
+    g, X = _distorted(seed=5)
+    field = lambda r, z: (3.0 + 50.0 * r - 20.0 * z, -7.0 + 10.0 * r + 40.0 * z)  # noqa: E731
+    E, mass, V, conn = _state(g, X, 2440.0, velocity=field)
+    ke0 = 0.5 * np.sum(mass * (V[S.VR] ** 2 + V[S.VZ] ** 2))
+    pz0 = np.sum(mass * V[S.VZ])
+    bad, out = _rezone(g, X, E, V, mass)
+    assert bad == 0
+    vr, vz = field(X[0], X[1])
+    np.testing.assert_allclose(V[S.VR], vr, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(V[S.VZ], vz, rtol=0, atol=1e-12)
+    ke1 = 0.5 * np.sum(mass * (V[S.VR] ** 2 + V[S.VZ] ** 2))
+    assert out[R_ENERGY] == pytest.approx(ke0 - ke1, rel=1e-9, abs=1e-15)
+    assert out[R_MOMENTUM] == pytest.approx(pz0 - np.sum(mass * V[S.VZ]), rel=1e-9, abs=1e-15)
+
+
+def test_a_sound_mesh_is_left_alone():
+    """Nodes are rezoned only where an element's quality is below the threshold: a rectangle grid (quality 1)
+    is not touched at a threshold below 1."""
+    g = Grid.tensor(0.02 + 0.01 * np.arange(5), 0.01 * np.arange(5))
+    X = np.vstack(g.nodes())
+    E, mass, V, conn = _state(g, X, 2440.0)
+    X0, E0 = X.copy(), E.copy()
+    bad, out = _rezone(g, X, E, V, mass, quality=0.95)
+    assert bad == 0 and out[R_MOVED] == 0
+    assert np.array_equal(X, X0) and np.array_equal(E, E0)
+
+
+# ------------------------------------------------------------------ a shot
+@pytest.mark.slow
+def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
+    """A CRH 3 shot into the erosion-free target on a coarse mesh: no element of the target is eroded and no mass
+    leaves the model (eroded mass exactly 0, no element ERODED); what the guard ejected lies above the struck face
+    and its mass is still on the nodes; the energy audit closes within 0.1 %."""
+    from penetration.fe.shot import run_shot
+    from penetration.geometry import Ogive
+    from penetration.hjc import HJC
+    nose = Ogive(3.0, 0.07)
+    spec = RunSpec(nose, 81.1, 500.0, HJC(), Settings(element_size=0.07 / 4, window_ahead=0.8),
+                   TargetSpec(formulation="erosion_free"), expected_depth=2.5)
+    r = run_shot(spec, keep_model=True)
+    m = r.model
+    assert r.status == "rest" and 0.5 < r.depth < 4.0
+    assert m.eroded_mass == 0.0 and not np.any(m.alive == S.ERODED)
+    ejected = np.flatnonzero(m.alive == S.EJECTED)
+    assert np.all(m.z[m.conn[ejected]].mean(axis=1) < 0.0)
+    kept = m.mass.sum()
+    total = m.E[S.MASS].sum()
+    assert kept == pytest.approx(total, rel=1e-12)   # the ejecta's mass is still on the nodes
+    assert max(abs(row["energy_error"]) for row in r.audit) < 1e-3
+    assert r.summary()["tunnel_eroded_share"] == 0.0
