@@ -23,7 +23,7 @@
 from pathlib import Path
 
 from penetration.config import check_config, check_config_files
-from penetration.pipeline import fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task
+from penetration.pipeline import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task
 from penetration.scenes import scene_names
 from penetration.tasks.reference import checked_outputs
 
@@ -47,8 +47,13 @@ CONVERGENCE_PROFILES = list(config["fe_convergence"]["profiles"])
 BANDS = {centre: list(band) for centre, band in config["fe_band"]["bands"].items()}
 BAND_PROFILES = [p for band in BANDS.values() for p in band]  # a name in two bands shows twice (refused below)
 BAND_SIZES = {p: h for band in config["fe_band"]["sizes"].values() for p, h in band.items()}
+# mesh profiles of the erosion-free target's grid-convergence study (coarse first, refined by one constant ratio)
+FREE_PROFILES = list(config["fe_erosion_free"]["profiles"])
 # element size of every profile beyond full and ci
-EXTRA_PROFILES = {**config["fe_convergence"]["sizes"], **BAND_SIZES}  # profile -> element size (m)
+EXTRA_PROFILES = {**config["fe_convergence"]["sizes"], **BAND_SIZES,
+                  **config["fe_erosion_free"]["sizes"]}  # profile -> element size (m)
+if len(EXTRA_PROFILES) != len(CONVERGENCE_PROFILES) + len(BAND_PROFILES) + len(FREE_PROFILES):
+    raise ValueError(f"fe_erosion_free.profiles {FREE_PROFILES}: names must differ from fe_convergence's and fe_band's")
 for centre in BANDS:
     if centre not in ["full", *CONVERGENCE_PROFILES]:
         raise ValueError(f"fe_band.bands.{centre}: allowed centres full or a profile of fe_convergence.profiles "
@@ -129,6 +134,9 @@ STUDY_OUTPUTS = [
     "figures/fe/contrast_band.png", "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
     "figures/fe/contrast_band_meshes.csv", "figures/fe/contrast_extrapolation.png", "figures/fe/contrast_extrapolation.csv",
     "figures/fe/contrast_extrapolation_depths.csv",
+    "figures/fe/erosion_free/convergence.png", "figures/fe/erosion_free/convergence.csv",
+    "figures/fe/erosion_free/convergence_shots.csv", "figures/fe/erosion_free/convergence_holes.csv",
+    "figures/timing/fe_erosion_free_convergence.csv",
     "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
     "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",

@@ -47,8 +47,9 @@ def test_the_erosion_free_target_refuses_erosion_and_a_pilot_hole_out_of_range()
         Controls(erosion_free=True, erosion="plastic_strain", erosion_value=1.0)
     with pytest.raises(ParameterError, match="erosion"):
         RunSpec(None, 81.1, 835.0, None, Settings().with_failure_strain(1.0), TargetSpec(formulation="erosion_free"))
-    with pytest.raises(ParameterError, match="pilot_hole"):
-        TargetSpec(formulation="erosion_free", pilot_hole=0.0)
+    for bad in (0.0, 1.0):
+        with pytest.raises(ParameterError, match="pilot_hole"):
+            TargetSpec(formulation="erosion_free", pilot_hole=bad)
     with pytest.raises(ParameterError, match="formulation"):
         TargetSpec(formulation="ale")
     with pytest.raises(ParameterError, match="rezone_weight"):

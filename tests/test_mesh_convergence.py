@@ -47,3 +47,39 @@ def test_rows_flag_a_single_mesh_series_that_is_not_monotone():
     assert row.zero_size_minus_paper_points == pytest.approx(-4.0) and not row.paper_inside_interval
     singles["fe_ratio"] = [0.96, 1.0, 1.02, 1.03]
     assert extrapolation_rows(meshes, singles, 0.95).iloc[0].single_meshes_monotone
+
+
+# ------------------------------------------------------------------ grid refinement (Roache's GCI)
+from penetration.mesh_convergence import (CONVERGED, MONOTONE, NOT_ASYMPTOTIC, OSCILLATORY,  # noqa: E402
+                                          grid_refinement)
+
+
+@pytest.mark.parametrize("p, r", [(1.0, 1.25), (2.0, 1.25), (1.5, 2.0)])
+def test_grid_refinement_recovers_the_order_and_the_limit_of_an_exact_power_law(p, r):
+    """f(h) = f0 + c h^p on four meshes refined by r: the observed order is p, the Richardson extrapolation is f0, the
+    two triples agree (asymptotic ratio 1) and the fine GCI is Fs |f1 - f0| (the error it bounds, times 1.25)."""
+    h = 0.01 / r ** np.arange(4)
+    f0, c = 3.2, 40.0
+    f = f0 + c * h ** p
+    g = grid_refinement(f, r)
+    assert g.order == pytest.approx(p, rel=1e-9) and g.order_coarse == pytest.approx(p, rel=1e-9)
+    assert g.extrapolated == pytest.approx(f0, rel=1e-12)
+    assert g.asymptotic_ratio == pytest.approx(1.0, rel=1e-9) and g.status == MONOTONE
+    assert g.gci_fine == pytest.approx(1.25 * abs(f[-1] - f0), rel=1e-9)
+    assert g.gci_fine_relative == pytest.approx(g.gci_fine / f[-1])
+
+
+def test_grid_refinement_says_when_it_is_not_in_the_asymptotic_range():
+    r = 1.25
+    h = 0.01 / r ** np.arange(4)
+    # two error terms of opposite sign: the triples' orders differ
+    g = grid_refinement(3.0 + 50 * h - 1000 * h ** 2, r)
+    assert g.status == NOT_ASYMPTOTIC and g.asymptotic_ratio == pytest.approx(1.266, abs=1e-3)
+    assert grid_refinement(3.0 + 50 * h + 2000 * h ** 2, r).status == MONOTONE   # the same, its terms of one sign
+    assert grid_refinement([3.0, 3.1, 3.05, 3.08], r).status == OSCILLATORY
+    assert grid_refinement([3.0, 3.1, 3.2, 3.2], r).status == CONVERGED
+    assert grid_refinement([3.0, 3.01, 3.03, 3.06], r).status == NOT_ASYMPTOTIC   # diverging (order < 0)
+    with pytest.raises(ValueError, match="ratio"):
+        grid_refinement([1.0, 2.0, 3.0], 1.0)
+    with pytest.raises(ValueError, match=">= 3"):
+        grid_refinement([1.0, 2.0], 1.25)

@@ -325,8 +325,8 @@ def element_size(radius, across):
 
 def element_sizes(cfg, radius):
     """Add to ``cfg`` the element size of every FE mesh profile, which the config gives as elements across the shank
-    radius: fe.profiles.*.element_size and .mesh_study_sizes, fe_convergence.sizes, fe_band.sizes (profile name ->
-    element size in m)."""
+    radius: fe.profiles.*.element_size and .mesh_study_sizes, fe_convergence.sizes, fe_band.sizes,
+    fe_erosion_free.sizes (profile name -> element size in m)."""
     for spec in cfg["fe"]["profiles"].values():
         spec["element_size"] = element_size(radius, spec["elements_across"])
         spec["mesh_study_sizes"] = [element_size(radius, n) for n in spec["mesh_study"]]
@@ -335,6 +335,9 @@ def element_sizes(cfg, radius):
     if "fe_band" in cfg:
         cfg["fe_band"]["sizes"] = {c: {p: element_size(radius, n) for p, n in band.items()}
                                    for c, band in cfg["fe_band"]["bands"].items()}
+    if "fe_erosion_free" in cfg:
+        cfg["fe_erosion_free"]["sizes"] = {p: element_size(radius, n)
+                                           for p, n in cfg["fe_erosion_free"]["profiles"].items()}
     return cfg
 
 
@@ -347,7 +350,8 @@ def _size_problems(cfg, source, refs):
     depth = refs[cfg["calibration"]["do1"]["depth"]].si
     ram = machine_memory()
     sizes = (_paths(cfg, "fe.profiles.*.elements_across") + _paths(cfg, "fe.profiles.*.mesh_study.[]")
-             + _paths(cfg, "fe_convergence.profiles.*") + _paths(cfg, "fe_band.bands.*.*"))
+             + _paths(cfg, "fe_convergence.profiles.*") + _paths(cfg, "fe_band.bands.*.*")
+             + _paths(cfg, "fe_erosion_free.profiles.*"))
     for where, across in sizes:
         h = element_size(radius, across)
         n = fe_mesh_elements(h, fe, radius, depth)

@@ -164,6 +164,13 @@ def fe_shot_owners(folder, schema_path) -> dict:
     return owners
 
 
+def fe_calibrated_scenes(folder, schema_path) -> set:
+    """The finite-element scenes whose erosion strain is calibrated on DO1 (their shots need the calibration)."""
+    from .scenes import read_scene
+    return {p.stem for p in sorted(Path(folder).glob("*.yaml"))
+            if read_scene(p, schema_path, ("fe",)).get("fe", {}).get("erosion_strain") == "calibrated"}
+
+
 def fe_scene_shots(folder, schema_path) -> dict:
     """Shots of the finite-element scenes: scene name -> [(nose, velocity tag)], every scene validated (level fe)."""
     from .scenes import read_scene, velocities

@@ -8,6 +8,8 @@ FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
 # the scene whose job computes each shot: a shot that two scenes share with the same physics runs once (Fig 15's
 # sweep takes Table 3's nine shots at 800-1200 m/s from Table 3's jobs)
 FE_OWNER = fe_shot_owners("workflow/scenes/fe", SCENE_SCHEMA)
+# the scenes whose shots need the DO1 calibration of their mesh (erosion_strain: calibrated)
+FE_CALIBRATED = fe_calibrated_scenes("workflow/scenes/fe", SCENE_SCHEMA)
 
 
 def fe_shots(scene):
@@ -37,7 +39,8 @@ rule calibrate_fe_do1:
 
 rule fe_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile), **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
+           cal=lambda w: fe_calibration(w.profile) if w.scene in FE_CALIBRATED else [],
+           **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{scene}/{nose}_{velocity}.json",
             histories="results/fe/{profile}/{scene}/{nose}_{velocity}_histories.csv",
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
@@ -245,6 +248,19 @@ use rule fe_fig12 as fe_contrast_extrapolation with:
     params: dpi=config["figures"]["dpi"], confidence=config["fe_band"]["confidence"],
     benchmark: "results/benchmarks/fe_contrast_extrapolation.tsv"
     log: "results/logs/fe_contrast_extrapolation.log",
+
+
+use rule fe_fig12 as fe_erosion_free_convergence with:
+    input: **task("tasks.fe_erosion_free"), reference=config["reference"],
+           shots=[path.format(profile=p) for scene in config["fe_erosion_free"]["scenes"] for p in FREE_PROFILES
+                  for path in fe_shots(scene)],
+    output: png=report("figures/fe/erosion_free/convergence.png", caption="../report/captions/fe_erosion_free_convergence.rst", category="Finite-element level"),
+            csv="figures/fe/erosion_free/convergence.csv", depths="figures/fe/erosion_free/convergence_shots.csv",
+            holes="figures/fe/erosion_free/convergence_holes.csv", cost="figures/timing/fe_erosion_free_convergence.csv",
+    params: dpi=config["figures"]["dpi"], across=config["fe_erosion_free"]["profiles"],
+            goal_depth=config["fe_erosion_free"]["gci_goal_depth"], goal_contrast=config["fe_erosion_free"]["gci_goal_contrast"],
+    benchmark: "results/benchmarks/fe_erosion_free_convergence.tsv"
+    log: "results/logs/fe_erosion_free_convergence.log",
 
 
 def fe_ensemble_members(profile):

@@ -120,6 +120,7 @@ class Model:
         self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.rezone: energy, momentum, moves)
         rz = np.inf if c.rezone_radius is None else c.rezone_radius
         self.rezone_columns = int(min(g.nr, max(2, np.searchsorted(g.R[0], rz))))
+        self.element_size = float(g.Z[1, 0] - g.Z[0, 0])   # the core's (its first row)
         self.dt = self._initial_dt()
         self.dt0 = self.dt
         self.ctl[C_DTMIN] = c.dt_floor * self.dt0 / c.dt_factor
@@ -215,11 +216,15 @@ class Model:
         return kinetic, float(m.sum())
 
     def rezone(self):
-        """Rezone and remap the window's zone (``fe.rezone``); returns 0 or the element that stopped it."""
+        """Eject the lip above the struck face (a penetration shot's: eject_height set), then rezone and remap the
+        window's zone (``fe.rezone``); returns 0 or the element that stopped the remap."""
         c = self.controls
-        return _rezone.rezone((self.nr, self.j0, self.j1, self.rezone_columns), self.X, self.V, self.E, self.alive,
-                              self.nstate, self.mass, self.material.rho0, c.rezone_quality, c.rezone_weight,
-                              self.remapped)
+        zone = (self.nr, self.j0, self.j1, self.rezone_columns)
+        if c.eject_height is not None and _rezone.eject(zone, self.X, self.alive, c.eject_length * self.element_size,
+                                                        c.eject_height, self.remapped):
+            self.retire_eroded()
+        return _rezone.rezone(zone, self.X, self.V, self.E, self.alive, self.nstate, self.mass, self.material.rho0,
+                              c.rezone_quality, c.rezone_weight, self.remapped)
 
     @property
     def E_remap(self):

@@ -8,8 +8,8 @@ remap; Benson, Comput. Methods Appl. Mech. Eng. 99, 1992):
    the mean of the four) moves by ``weight`` of the way to the volume-weighted mean of its four elements' centres,
    the volumetric smoothing of Walker & Yu's ALE for deep penetration (Acta Geotech. 1, 2006). A move is limited to
    a quarter of the node's shortest edge, so that each face sweeps only into its two elements. A node of the struck
-   face slides along it (the polyline through it and its neighbours) toward the middle of its neighbours' arc, so
-   the free surface keeps its place.
+   face or of the tunnel wall slides along it (the polyline through it and its neighbours) toward the middle of
+   its neighbours' arc, so the boundary keeps its place (the nose slides on the wall without friction, or nearly).
 2. **Remap of the elements** by swept faces and donor cells (first order): each face's swept volume (exact for the
    axisymmetric volume, so the new volumes are the new geometry's) carries the donor's density, specific internal
    energy, stress and state variables. Mass and internal energy are conserved exactly; the reference volume
@@ -18,10 +18,12 @@ remap; Benson, Comput. Methods Appl. Mech. Eng. 99, 1992):
    velocity at its new place from its four elements' velocity gradients. This is not exactly conservative: the
    kinetic energy and axial momentum it changes are returned, and the audit books them as the remap's terms.
 
-The tunnel wall (the first node column, where the nose slides) stays Lagrangian, so the contact sees material
-nodes. What the nose throws out above the struck face and tears apart there (a lip of fully damaged concrete
-jetting up along the nose) is not rezoned: the guard ejects an element that loses its shape there
-(``fe.erosion.retire``), and an element that loses it inside the target stops the run.
+What the nose throws out above the struck face (a lip of fully damaged concrete jetting up along the nose) is
+ejected, not rezoned: before each rezone ``eject`` marks the elements above the face that have become thinner than
+a share of the element size or nearly inverted, or that have flown farther than a set height above it (a length
+of the shot, not of the mesh), and the guard those that invert between rezones; both are booked
+as ejecta by ``fe.erosion.retire`` (no stress from then on, their mass and momentum kept on their nodes). An element
+that loses its shape inside the target stops the run.
 """
 from __future__ import annotations
 
@@ -29,13 +31,14 @@ import numpy as np
 from numba import njit
 
 from .element import moment
-from .state import (ACTIVE, DMG, EPSEFF, EPSP, IE, LIVE, MASS, MUMAX, MUP, P, QV, SRR, SRZ, STT, SZZ, TWO_PI,
+from .state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, P, QV, SRR, SRZ, STT, SZZ, TWO_PI,
                     V0, VR, VZ)
 
 # the element fields carried per unit mass (IE is carried as specific energy, MASS is the conserved quantity)
 CARRIED = np.array([SRR, SZZ, STT, SRZ, P, QV, MUMAX, MUP, DMG, EPSP, EPSEFF], np.int64)
-# rezone's report (out): remapped kinetic energy lost, axial momentum lost, nodes moved, largest move / edge
-R_ENERGY, R_MOMENTUM, R_MOVED, R_LARGEST, R_COUNT = range(5)
+# rezone's report (out): remapped kinetic energy lost, axial momentum lost, nodes moved, largest move / edge, elements
+# marked for ejection by the last rezone, rezones
+R_ENERGY, R_MOMENTUM, R_MOVED, R_LARGEST, R_EJECT, R_COUNT = range(6)
 
 
 @njit(cache=True)
@@ -88,6 +91,63 @@ def _gradient(X, V, nr, e):
 
 
 @njit(cache=True)
+def _slide(X, n, prev, nxt, weight):
+    """Where boundary node n goes sliding along the boundary's polyline prev - n - nxt: ``weight`` of the way to the
+    middle of the arc between its neighbours; (r, z, the move over the shorter side)."""
+    l1 = np.sqrt((X[0, n] - X[0, prev]) ** 2 + (X[1, n] - X[1, prev]) ** 2)
+    l2 = np.sqrt((X[0, nxt] - X[0, n]) ** 2 + (X[1, nxt] - X[1, n]) ** 2)
+    s = l1 + weight * (0.5 * (l1 + l2) - l1)  # arc length from prev
+    if s < l1:
+        f = s / l1
+        tr, tz = X[0, prev] + f * (X[0, n] - X[0, prev]), X[1, prev] + f * (X[1, n] - X[1, prev])
+    else:
+        f = (s - l1) / l2
+        tr, tz = X[0, n] + f * (X[0, nxt] - X[0, n]), X[1, n] + f * (X[1, nxt] - X[1, n])
+    return tr, tz, abs(s - l1) / min(l1, l2)
+
+
+@njit(cache=True)
+def _thin(X, nr, e, length):
+    """Whether element e is thinner than ``length`` (its area over its longest side) or nearly inverted."""
+    a, b, c, d = _nodes_of(nr, e)
+    r1, r2, r3, r4 = X[0, a], X[0, b], X[0, c], X[0, d]
+    z1, z2, z3, z4 = X[1, a], X[1, b], X[1, c], X[1, d]
+    area2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
+    side = max(max((r2 - r1) ** 2 + (z2 - z1) ** 2, (r3 - r2) ** 2 + (z3 - z2) ** 2),
+               max((r4 - r3) ** 2 + (z4 - z3) ** 2, (r1 - r4) ** 2 + (z1 - z4) ** 2))
+    return 0.5 * area2 < length * np.sqrt(side) or _quality(X, nr, e) < 0.2
+
+
+@njit(cache=True)
+def eject(zone, X, alive, length, height, out):
+    """Mark for ejection (ERODING; ``fe.erosion.retire`` books them as ejecta) the live elements of the window's rows
+    whose centre lies above the struck face (z < 0) and that are thinner than ``length`` or nearly inverted, or
+    whose centre has flown more than ``height`` above it: the lip the nose throws out, which would otherwise set the
+    time step. Returns how many."""
+    nr, j0, j1, i_max = zone
+    count = 0
+    for j in range(j0, j1):
+        above = False
+        for i in range(nr + 1):   # a row with no node above the face has no element to eject
+            if X[1, j * (nr + 1) + i] < 0.0 or X[1, (j + 1) * (nr + 1) + i] < 0.0:
+                above = True
+                break
+        if not above:
+            continue
+        for i in range(nr):
+            e = j * nr + i
+            if alive[e] != LIVE:
+                continue
+            a, b, c, d = _nodes_of(nr, e)
+            zc = 0.25 * (X[1, a] + X[1, b] + X[1, c] + X[1, d])
+            if zc < -height or (zc < 0.0 and _thin(X, nr, e, length)):
+                alive[e] = ERODING
+                count += 1
+    out[R_EJECT] = count
+    return count
+
+
+@njit(cache=True)
 def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
     """One rezone and remap of the zone (nr, j0, j1, i_max): element columns i < i_max of the window's rows
     j0 <= j < j1 of a grid nr elements wide, material density rho0. Returns 0, or the element whose remapped mass
@@ -129,24 +189,21 @@ def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
             largest = max(largest, step / edge)
             moved.append(n)
             targets.append((X[0, n] + dr, X[1, n] + dz))
-    if j0 == 0:   # the struck face: a node slides along it, toward the middle of its neighbours' arc
+    if j0 == 0:   # the struck face: a node slides along it
         for i in range(1, i_max):
-            n = i
-            if nstate[n] != ACTIVE or alive[i] != LIVE or alive[i - 1] != LIVE:
-                continue
-            if min(_quality(X, nr, i), _quality(X, nr, i - 1)) >= quality:
-                continue
-            l1 = np.sqrt((X[0, n] - X[0, n - 1]) ** 2 + (X[1, n] - X[1, n - 1]) ** 2)
-            l2 = np.sqrt((X[0, n + 1] - X[0, n]) ** 2 + (X[1, n + 1] - X[1, n]) ** 2)
-            s = l1 + weight * (0.5 * (l1 + l2) - l1)  # arc length from node n - 1: weight of the way to the middle
-            if s < l1:
-                f = s / l1
-                tr, tz = X[0, n - 1] + f * (X[0, n] - X[0, n - 1]), X[1, n - 1] + f * (X[1, n] - X[1, n - 1])
-            else:
-                f = (s - l1) / l2
-                tr, tz = X[0, n] + f * (X[0, n + 1] - X[0, n]), X[1, n] + f * (X[1, n + 1] - X[1, n])
-            step = np.sqrt((tr - X[0, n]) ** 2 + (tz - X[1, n]) ** 2)
-            largest = max(largest, step / min(l1, l2))
+            if nstate[i] == ACTIVE and alive[i] == LIVE and alive[i - 1] == LIVE and (
+                    min(_quality(X, nr, i), _quality(X, nr, i - 1)) < quality):
+                tr, tz, ratio = _slide(X, i, i - 1, i + 1, weight)
+                largest = max(largest, ratio)
+                moved.append(i)
+                targets.append((tr, tz))
+    for j in range(lo, j1):   # the tunnel wall: a node slides along it (the nose is frictionless or nearly)
+        n = j * nrow
+        ea, ed = j * nr, (j - 1) * nr
+        if nstate[n] == ACTIVE and alive[ea] == LIVE and alive[ed] == LIVE and (
+                min(_quality(X, nr, ea), _quality(X, nr, ed)) < quality):
+            tr, tz, ratio = _slide(X, n, n - nrow, n + nrow, weight)
+            largest = max(largest, ratio)
             moved.append(n)
             targets.append((tr, tz))
     if len(moved) == 0:

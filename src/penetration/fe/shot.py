@@ -33,7 +33,7 @@ def mesh_spec(nose, settings: Settings, target: TargetSpec, expected_depth) -> M
     else:
         depth = target.depth or expected_depth + settings.depth_margin
     h = settings.element_size
-    hole = target.pilot_hole * h if target.formulation == "erosion_free" else 0.0
+    hole = target.pilot_hole * nose.radius if target.formulation == "erosion_free" else 0.0
     return MeshSpec(h, settings.core_calibers * nose.radius,
                     min(depth, expected_depth + 0.5 * settings.depth_margin), target.radius, depth, settings.grading,
                     pilot_hole=hole, opened_radius=nose.radius if hole else 0.0)
@@ -46,9 +46,11 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
     controls = replace(settings.controls, lateral=lateral, bottom=bottom, output_interval=settings.output_interval,
                        window_ahead=settings.window_ahead, window_behind=behind)
     if target.formulation == "erosion_free":
-        # rezoned out to the core; the guard ejects what loses its shape above the struck face (fe.erosion)
+        # rezoned out to the core; what flies farther than the shank radius above the struck face, or loses its shape
+        # above it, is ejected (fe.rezone.eject, fe.erosion)
         controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False,
-                           rezone_radius=spec.core_radius)
+                           rezone_radius=spec.core_radius,
+                           eject_height=nose.radius if controls.eject_height is None else controls.eject_height)
     return Model(build(spec), material, controls)
 
 

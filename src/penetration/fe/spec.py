@@ -59,6 +59,9 @@ class Controls:
     rezone_quality: float = 0.95        # a node is rezoned when one of its elements' quality is below this
     rezone_weight: float = 0.5          # share of the way to the smoothed place a rezoned node moves
     rezone_radius: float | None = None  # m: the zone's extent from the axis (None: the whole width)
+    eject_length: float = 0.25          # an element above the struck face thinner than this many element sizes is ejected
+    eject_height: float | None = None   # m: one whose centre is farther above the face than this too (None: no
+    #                                     ejection at all: a problem without a struck face)
 
     def __post_init__(self):
         if not 0.0 < self.dt_factor <= 1.0:
@@ -86,6 +89,10 @@ class Controls:
             raise ParameterError("fe controls", "rezone_quality", self.rezone_quality, "0 < rezone_quality <= 1")
         if not 0.0 < self.rezone_weight <= 1.0:
             raise ParameterError("fe controls", "rezone_weight", self.rezone_weight, "0 < rezone_weight <= 1")
+        if not 0.0 < self.eject_length <= 1.0:
+            raise ParameterError("fe controls", "eject_length", self.eject_length, "0 < eject_length <= 1 (element sizes)")
+        if self.eject_height is not None and not self.eject_height > 0:
+            raise ParameterError("fe controls", "eject_height", self.eject_height, "> 0 (m) or None")
         if self.rezone_radius is not None and not self.rezone_radius > 0:
             raise ParameterError("fe controls", "rezone_radius", self.rezone_radius, "> 0 (m) or None")
 
@@ -108,7 +115,7 @@ class TargetSpec:
     lateral: str | None = None   # the lateral face, one of TARGET_FACES; None: by kind (semi-infinite non-reflecting)
     bottom: str | None = None    # the bottom face, likewise
     formulation: str = "eroding"  # one of FORMULATIONS
-    pilot_hole: float = 1.0      # erosion-free: the pilot hole's radius in element sizes (it shrinks with the mesh)
+    pilot_hole: float = 0.25     # erosion-free: the pilot hole's radius over the shank's (a study drives it to 0)
 
     def __post_init__(self):
         if self.kind not in ("semi_infinite", "block"):
@@ -119,8 +126,8 @@ class TargetSpec:
             raise ParameterError("fe target", "depth", self.depth, "> 0 (m) or None")
         if self.formulation not in FORMULATIONS:
             raise ParameterError("fe target", "formulation", self.formulation, f"one of {FORMULATIONS}")
-        if not (math.isfinite(self.pilot_hole) and 0.0 < self.pilot_hole <= 4.0):
-            raise ParameterError("fe target", "pilot_hole", self.pilot_hole, "0 < pilot_hole <= 4 (element sizes)")
+        if not (math.isfinite(self.pilot_hole) and 0.0 < self.pilot_hole < 1.0):
+            raise ParameterError("fe target", "pilot_hole", self.pilot_hole, "0 < pilot_hole < 1 (of the shank radius)")
         for name in ("lateral", "bottom"):
             if getattr(self, name) not in (None, *TARGET_FACES):
                 raise ParameterError("fe target", name, getattr(self, name), f"one of {TARGET_FACES} or None")
@@ -135,7 +142,7 @@ class TargetSpec:
         return cls(kind, fe.get("target_radius", BLOCK_RADIUS if block else target_radius),
                    fe.get("target_depth", block_depth if block else None),
                    fe.get("lateral_boundary"), fe.get("bottom_boundary"), fe.get("formulation", "eroding"),
-                   fe.get("pilot_hole", 1.0))
+                   fe.get("pilot_hole", 0.25))
 
     def boundary(self, face):
         """The boundary of a face ('lateral' or 'bottom'): as set, else free for the block, non-reflecting else."""

@@ -1,10 +1,11 @@
-"""Drawing of the FE nose contrasts' regression on the element size (tasks.fe_studies)."""
+"""Drawing of the FE nose contrasts' regression on the element size (tasks.fe_studies) and of the erosion-free
+target's grid convergence (tasks.fe_erosion_free)."""
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .common import PAPER_STYLE, save
+from .common import NOSE_COLORS, PAPER_STYLE, save
 
 MM = 1e-3
 
@@ -63,4 +64,51 @@ def contrast_extrapolation_figure(cells, meshes, singles, path, dpi):
                  "on DO1:\nthe line over the band meshes extrapolated to zero size (the rightmost tick: the 3-across "
                  "mesh, off scale)", fontsize=9)
     fig.subplots_adjust(bottom=0.15, top=0.88, wspace=0.08, hspace=0.12)
+    save(fig, path, dpi)
+
+
+CONTRAST_COLORS = {"DO/CRH 4.5": "tab:green", "CRH 4.5/CRH 3": "tab:blue", "DO/CRH 3": "tab:purple"}
+
+
+def grid_convergence_figure(conv, path, dpi):
+    """Depths (top row) and nose contrasts as depth gains (bottom row) of the erosion-free target against the element
+    size, one column per velocity: each mesh's value, the Richardson extrapolation at zero size with the finest
+    mesh's GCI as its bar (hollow: not in the asymptotic range), and the paper's simulated value."""
+    plt.rcParams.update({"font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
+    cols = [c for c in conv.columns if c.startswith("value_at_")]
+    across = np.array([float(c.split("_")[2]) for c in cols])
+    h = 70.0 / across   # mm: the 70 mm shank radius over the elements across
+    vs = sorted(conv.velocity_ms.unique())
+    fig, axes = plt.subplots(2, len(vs), figsize=(2.6 * len(vs), 5.4), sharex=True, squeeze=False)
+    for j, v in enumerate(vs):
+        for i, (quantity, colors, scale, offset) in enumerate((("depth_m", NOSE_COLORS, 1.0, 0.0),
+                                                               ("depth_ratio", CONTRAST_COLORS, 100.0, 1.0))):
+            ax = axes[i, j]
+            rows = conv[(conv.quantity == quantity) & (conv.velocity_ms == v)]
+            for k, r in enumerate(rows.itertuples()):
+                y = scale * (np.array([getattr(r, c) for c in cols]) - offset)
+                color = colors.get(r.case, "gray")
+                ax.plot(h, y, "o-", ms=3, lw=0.9, color=color, label=r.case)
+                x0 = -0.25 - 0.2 * k
+                ax.errorbar([x0], [scale * (r.extrapolated - offset)], yerr=[scale * r.gci_fine], fmt="s", ms=4,
+                            color=color, mfc=color if r.status == "asymptotic" else "white", capsize=2.5)
+                if np.isfinite(r.paper_simulated):
+                    ax.plot([h.max() + 0.6], [scale * (r.paper_simulated - offset)], **{**PAPER_STYLE, "color": color},
+                            label=None)
+            if i == 0:
+                ax.set_title(f"{v:g} m/s")
+            if i == 1:
+                ax.axhline(0, color="black", lw=0.5)
+                ax.set_xlabel("element size (mm)")
+            if j == 0:
+                ax.set_ylabel("depth (m)" if i == 0 else "depth gain of the contrast (%)")
+        axes[0, j].set_xlim(-1.0, h.max() + 1.0)
+    for i in range(2):
+        handles, labels = axes[i, 0].get_legend_handles_labels()
+        axes[i, -1].legend(handles, labels, fontsize=7, loc="best")
+    fig.suptitle("Erosion-free target (Table 1's HJC as stated): Table 3 on meshes refined by "
+                 f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius)\n"
+                 "squares at zero size: Richardson extrapolation with the finest mesh's GCI (hollow: not in the "
+                 "asymptotic range); crosses at the right: the paper's simulation", fontsize=9)
+    fig.subplots_adjust(top=0.86, wspace=0.3, hspace=0.12)
     save(fig, path, dpi)

@@ -1,0 +1,88 @@
+"""The erosion-free target's grid-convergence study, as pure functions of tables.
+
+Table 3's shots on meshes refined by one constant ratio (the pilot hole one element wide on each, so it shrinks with
+the mesh): per depth and per nose contrast (a depth ratio, ``fe_studies.CONTRASTS``) the observed order, the
+Richardson extrapolation and Roache's GCI of the finest mesh (``mesh_convergence.grid_refinement``), against the
+study's goals; and what each mesh cost. Nothing here reads or writes a file or draws.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .fe_studies import CONTRASTS
+from .mesh_convergence import MONOTONE, grid_refinement
+
+SHOT_COLUMNS = ("depth_m", "wall_time_s", "steps", "elements", "energy_error_max", "eroded_mass_kg",
+                "ejected_mass_kg", "remap_energy_j", "status")
+
+
+def shot_rows(shots, across) -> pd.DataFrame:
+    """One row per shot of the study: its mesh (profile, elements across the shank radius, element size) and what it
+    gave and cost. ``shots``: the shots' summaries (tasks.fe); ``across``: profile -> elements across."""
+    rows = []
+    for s in shots:
+        if s["profile"] not in across:
+            raise ValueError(f"shot {s['nose']} at {s['velocity']} m/s: profile {s['profile']} is not one of the "
+                             f"study's {sorted(across)}")
+        if s["target"]["formulation"] != "erosion_free":
+            raise ValueError(f"shot {s['nose']} at {s['velocity']} m/s on {s['profile']}: formulation "
+                             f"{s['target']['formulation']}, the study's is erosion_free")
+        rows.append({"profile": s["profile"], "elements_across": float(across[s["profile"]]),
+                     "element_size_m": s["element_size"], "nose": s["nose"], "velocity_ms": float(s["velocity"]),
+                     **{k: s[k] for k in SHOT_COLUMNS}})
+    return pd.DataFrame(rows).sort_values(["velocity_ms", "nose", "elements_across"], ignore_index=True)
+
+
+def refinement_ratio(across):
+    """The one constant ratio of successive meshes (elements across, coarse first); an error if they are not so."""
+    n = np.sort(np.asarray(across, float))
+    r = n[1:] / n[:-1]
+    if n.size < 3 or not np.allclose(r, r[0], rtol=1e-9) or not r[0] > 1:
+        raise ValueError(f"grid study: meshes of {list(n)} elements across; allowed: >= 3 refined by one constant ratio > 1")
+    return float(r[0])
+
+
+def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
+    g = grid_refinement(f, ratio)
+    gci = g.gci_fine_relative if relative else g.gci_fine
+    return {"quantity": quantity, "case": case, "velocity_ms": v,
+            **{f"value_at_{n:g}_across": x for n, x in zip(across, f)},
+            "observed_order": g.order, "observed_order_coarse": g.order_coarse, "asymptotic_ratio": g.asymptotic_ratio,
+            "status": g.status, "extrapolated": g.extrapolated, "gci_fine": g.gci_fine,
+            "gci_fine_relative": g.gci_fine_relative, "gci_goal": goal, "gci_goal_kind": "relative" if relative else "absolute",
+            "goal_met": bool(g.status == MONOTONE and gci <= goal), "paper_simulated": paper,
+            "paper_inside_gci_band": bool(abs(paper - g.extrapolated) <= g.gci_fine) if np.isfinite(paper) else False}
+
+
+def convergence_rows(shots: pd.DataFrame, paper_depth: dict, goal_depth, goal_contrast) -> pd.DataFrame:
+    """Per depth (nose, velocity) and contrast (name, velocity): the values on each mesh (coarse first), the grid
+    refinement and the goal (depth: relative GCI <= goal_depth; contrast: absolute GCI of the ratio <= goal_contrast;
+    met only in the asymptotic range). ``paper_depth``: (velocity, nose) -> the paper's simulated depth."""
+    across = sorted(shots.elements_across.unique())
+    ratio = refinement_ratio(across)
+    rows = []
+    for v in sorted(shots.velocity_ms.unique()):
+        cell = shots[shots.velocity_ms == v]
+        depth = {}
+        for nose, g in cell.groupby("nose", sort=False):
+            g = g.sort_values("elements_across")
+            if list(g.elements_across) != across:
+                raise ValueError(f"grid study: {nose} at {v:g} m/s has meshes {list(g.elements_across)}, not {across}")
+            depth[nose] = g.depth_m.to_numpy()
+            rows.append(_row("depth_m", nose, v, depth[nose], across, ratio, paper_depth.get((v, nose), np.nan),
+                             goal_depth, True))
+        for name, (num, den) in CONTRASTS.items():
+            if num in depth and den in depth:
+                paper = paper_depth.get((v, num), np.nan) / paper_depth.get((v, den), np.nan)
+                rows.append(_row("depth_ratio", name, v, depth[num] / depth[den], across, ratio, paper, goal_contrast,
+                                 False))
+    return pd.DataFrame(rows)
+
+
+def cost_rows(shots: pd.DataFrame) -> pd.DataFrame:
+    """Per mesh: shots, wall time per shot (mean, max) and in all, steps and elements per shot (mean)."""
+    g = shots.groupby(["profile", "elements_across", "element_size_m"], as_index=False)
+    return g.agg(shots=("wall_time_s", "size"), wall_time_mean_s=("wall_time_s", "mean"),
+                 wall_time_max_s=("wall_time_s", "max"), wall_time_sum_s=("wall_time_s", "sum"),
+                 steps_mean=("steps", "mean"), elements_mean=("elements", "mean")).sort_values("elements_across")
