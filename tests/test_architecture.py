@@ -13,7 +13,7 @@ PKG = Path(__file__).resolve().parents[1] / "src/penetration"
 ORDER = ["errors", "units", "checks", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference", "resistance",
          "dop", "calibration", "trajectory", "hjc", "concrete", "cavity", "cavity_level", "cavity_oracles",
          "cavity_verification", "fe", "fe_level", "shots", "levels", "trust", "warmup", "reference", "diff",
-         "fe_studies", "config", "scenes", "numba_cache", "io", "docs", "figures", "tasks", "pipeline", "build", "cli",
+         "fe_studies", "grid_study", "config", "scenes", "numba_cache", "io", "docs", "figures", "tasks", "pipeline", "build", "cli",
          "__main__"]
 # pure: no file I/O, plotting or printing
 PHYSICS = ["errors", "units", "checks", "mesh_convergence", "geometry", "hjc_effects", "nstar", "inference",
@@ -22,7 +22,7 @@ PHYSICS = ["errors", "units", "checks", "mesh_convergence", "geometry", "hjc_eff
 # the simulation levels, which the closed form (dop) checks and which never import it
 SIMULATION = ["trajectory", "cavity", "cavity_level", "fe", "fe_level"]
 # pure functions on result tables (frames in, frames out): no file I/O, plotting or printing
-TABLES = ["fe_studies"]
+TABLES = ["fe_studies", "grid_study"]
 
 # known violations: the tests run and must fail until the code is fixed (strict), then the mark goes
 KNOWN = {"pure": {}, "quiet": {}}

@@ -186,3 +186,24 @@ def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
     assert kept == pytest.approx(total, rel=1e-12)   # the ejecta's mass is still on the nodes
     assert max(abs(row["energy_error"]) for row in r.audit) < 1e-3
     assert r.summary()["tunnel_eroded_share"] == 0.0
+
+
+def test_boundary_nodes_slide_along_their_boundary_and_take_a_linear_velocity_exactly():
+    """Struck-face and tunnel-wall nodes unevenly spaced slide along their straight boundary (r or z unchanged)
+    toward the middle of their neighbours, and take the velocity of a linear field at their new place from their two
+    elements (a node on a boundary has no others)."""
+    r = 0.02 + np.array([0.0, 0.004, 0.02, 0.03, 0.04, 0.05])
+    z = np.array([0.0, 0.003, 0.02, 0.03, 0.04, 0.05])
+    g = Grid.tensor(r, z)
+    X = np.vstack(g.nodes())
+    field = lambda r_, z_: (1.0 + 30.0 * r_ + 5.0 * z_, 2.0 - 8.0 * r_ + 60.0 * z_)  # noqa: E731
+    E, mass, V, conn = _state(g, X, 2440.0, velocity=field)
+    X0 = X.copy()
+    bad, out = _rezone(g, X, E, V, mass, quality=1.0)
+    assert bad == 0
+    face, wall = np.arange(1, g.nr), np.arange(1, g.nz) * (g.nr + 1)
+    assert np.all(X[1, face] == 0.0) and np.all(X[0, wall] == 0.02)          # on their boundaries
+    assert X[0, 1] > X0[0, 1] and X[1, wall[0]] > X0[1, wall[0]]             # the crowded ones moved apart
+    vr, vz = field(X[0], X[1])
+    np.testing.assert_allclose(V[S.VR], vr, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(V[S.VZ], vz, rtol=0, atol=1e-12)

@@ -1,9 +1,16 @@
 """The erosion-free target's grid-convergence study, as pure functions of tables.
 
-Table 3's shots on meshes refined by one constant ratio (the pilot hole one element wide on each, so it shrinks with
-the mesh): per depth and per nose contrast (a depth ratio, ``fe_studies.CONTRASTS``) the observed order, the
-Richardson extrapolation and Roache's GCI of the finest mesh (``mesh_convergence.grid_refinement``), against the
-study's goals; and what each mesh cost. Nothing here reads or writes a file or draws.
+Table 3's shots on meshes refined by one constant ratio, at each of several pilot holes halved in turn (the hole
+fixed while the mesh refines, so that each sequence refines one geometry alike):
+
+1. per hole, per depth and per nose contrast (a depth ratio, ``fe_studies.CONTRASTS``): the observed order, the
+   Richardson extrapolation to zero element size and Roache's GCI of the finest mesh
+   (``mesh_convergence.grid_refinement``), against the study's goals (``convergence_rows``);
+2. over the holes: the same refinement of the zero-size values to zero hole (``hole_rows``), the hole's own order
+   and GCI beside the largest mesh GCI of the holes;
+3. what each mesh cost (``cost_rows``).
+
+Nothing here reads or writes a file or draws.
 """
 from __future__ import annotations
 
@@ -28,10 +35,12 @@ def shot_rows(shots, across) -> pd.DataFrame:
         if s["target"]["formulation"] != "erosion_free":
             raise ValueError(f"shot {s['nose']} at {s['velocity']} m/s on {s['profile']}: formulation "
                              f"{s['target']['formulation']}, the study's is erosion_free")
-        rows.append({"profile": s["profile"], "elements_across": float(across[s["profile"]]),
+        rows.append({"pilot_hole": float(s["target"]["pilot_hole"]), "profile": s["profile"],
+                     "elements_across": float(across[s["profile"]]),
                      "element_size_m": s["element_size"], "nose": s["nose"], "velocity_ms": float(s["velocity"]),
                      **{k: s[k] for k in SHOT_COLUMNS}})
-    return pd.DataFrame(rows).sort_values(["velocity_ms", "nose", "elements_across"], ignore_index=True)
+    return pd.DataFrame(rows).sort_values(["pilot_hole", "velocity_ms", "nose", "elements_across"],
+                                          ascending=[False, True, True, True], ignore_index=True)
 
 
 def refinement_ratio(across):
@@ -56,9 +65,19 @@ def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
 
 
 def convergence_rows(shots: pd.DataFrame, paper_depth: dict, goal_depth, goal_contrast) -> pd.DataFrame:
-    """Per depth (nose, velocity) and contrast (name, velocity): the values on each mesh (coarse first), the grid
-    refinement and the goal (depth: relative GCI <= goal_depth; contrast: absolute GCI of the ratio <= goal_contrast;
-    met only in the asymptotic range). ``paper_depth``: (velocity, nose) -> the paper's simulated depth."""
+    """Per pilot hole, depth (nose, velocity) and contrast (name, velocity): the values on each mesh (coarse first),
+    the grid refinement and the goal (depth: relative GCI <= goal_depth; contrast: absolute GCI of the ratio <=
+    goal_contrast; met only in the asymptotic range). ``paper_depth``: (velocity, nose) -> the paper's simulated
+    depth."""
+    frames = []
+    for hole, g in shots.groupby("pilot_hole", sort=False):
+        t = _hole_convergence(g, paper_depth, goal_depth, goal_contrast)
+        t.insert(0, "pilot_hole", hole)
+        frames.append(t)
+    return pd.concat(frames, ignore_index=True)
+
+
+def _hole_convergence(shots, paper_depth, goal_depth, goal_contrast):
     across = sorted(shots.elements_across.unique())
     ratio = refinement_ratio(across)
     rows = []
@@ -86,3 +105,37 @@ def cost_rows(shots: pd.DataFrame) -> pd.DataFrame:
     return g.agg(shots=("wall_time_s", "size"), wall_time_mean_s=("wall_time_s", "mean"),
                  wall_time_max_s=("wall_time_s", "max"), wall_time_sum_s=("wall_time_s", "sum"),
                  steps_mean=("steps", "mean"), elements_mean=("elements", "mean")).sort_values("elements_across")
+
+
+def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
+    """Per depth and contrast: its zero-size values at each pilot hole (largest first), refined to zero hole by
+    grid_refinement with the holes' ratio (their observed order, extrapolation and GCI), beside the largest mesh
+    GCI among the holes (the zero-size values' own uncertainty). Needs >= 3 holes halved (or refined by one
+    ratio) in turn."""
+    holes = sorted(conv.pilot_hole.unique(), reverse=True)
+    if len(holes) < 3:
+        raise ValueError(f"grid study: pilot holes {holes}; allowed: >= 3, refined by one constant ratio")
+    ratio = refinement_ratio([1.0 / x for x in holes])
+    rows = []
+    for (quantity, case, v), g in conv.groupby(["quantity", "case", "velocity_ms"], sort=False):
+        g = g.set_index("pilot_hole").loc[holes]
+        f = g.extrapolated.to_numpy()
+        r = grid_refinement(f, ratio)
+        relative = quantity == "depth_m"
+        gci = r.gci_fine_relative if relative else r.gci_fine
+        mesh = (g.gci_fine_relative if relative else g.gci_fine).max()
+        goal = goal_depth if relative else goal_contrast
+        paper = float(g.paper_simulated.iloc[0])
+        band = max(r.gci_fine, float(g.gci_fine.max()))
+        rows.append({"quantity": quantity, "case": case, "velocity_ms": v,
+                     **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)},
+                     "hole_order": r.order, "hole_order_coarse": r.order_coarse, "hole_asymptotic_ratio": r.asymptotic_ratio,
+                     "hole_status": r.status, "at_zero_hole": r.extrapolated, "hole_gci": r.gci_fine,
+                     "hole_gci_relative": r.gci_fine_relative, "mesh_gci_largest": float(g.gci_fine.max()),
+                     "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
+                     "mesh_status_all_asymptotic": bool((g.status == MONOTONE).all()),
+                     "gci_goal": goal, "goal_met": bool(r.status == MONOTONE and gci <= goal and mesh <= goal
+                                                        and (g.status == MONOTONE).all()),
+                     "uncertainty": band, "paper_simulated": paper,
+                     "paper_inside": bool(abs(paper - r.extrapolated) <= band) if np.isfinite(paper) else False})
+    return pd.DataFrame(rows)

@@ -19,7 +19,7 @@ from .contact import Projectile
 from .mesh import Grid
 from .rezone import R_COUNT, R_ENERGY, R_MOMENTUM
 from .spec import Controls
-from .state import (ACTIVE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH,
+from .state import (ACTIVE, FREE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH,
                     DROPPED, EROSION_KINDS, FIX_R, FIX_Z, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Boundary, Body, Loads,
                     Nodes, Rows, Span)
 
@@ -223,7 +223,11 @@ class Model:
         if c.eject_height is not None and _rezone.eject(zone, self.X, self.alive, c.eject_length * self.element_size,
                                                         c.eject_height, self.remapped):
             self.retire_eroded()
-        return _rezone.rezone(zone, self.X, self.V, self.E, self.alive, self.nstate, self.mass, self.material.rho0,
+        state = self.nstate
+        if self.presc_i.size:   # a node whose velocity is prescribed stays where its material is
+            state = state.copy()
+            state[self.presc_i] = FREE
+        return _rezone.rezone(zone, self.X, self.V, self.E, self.alive, state, self.mass, self.material.rho0,
                               c.rezone_quality, c.rezone_weight, self.remapped)
 
     @property

@@ -5,11 +5,13 @@ remap; Benson, Comput. Methods Appl. Mech. Eng. 99, 1992):
 
 1. **Rezone.** An interior node of the zone (off the tunnel wall, the struck face and the window's edge rows, its
    four elements live) whose elements have lost their shape (the smallest corner Jacobian below ``quality`` times
-   the mean of the four) moves by ``weight`` of the way to the volume-weighted mean of its four elements' centres,
-   the volumetric smoothing of Walker & Yu's ALE for deep penetration (Acta Geotech. 1, 2006). A move is limited to
-   a quarter of the node's shortest edge, so that each face sweeps only into its two elements. A node of the struck
-   face or of the tunnel wall slides along it (the polyline through it and its neighbours) toward the middle of
-   its neighbours' arc, so the boundary keeps its place (the nose slides on the wall without friction, or nearly).
+   the mean of the four; every node at ``quality`` 1) moves by ``weight`` of the way to the area-weighted mean of
+   its four elements' centres: the volumetric smoothing of Walker & Yu's ALE for deep penetration (Acta Geotech.
+   1, 2006) with the plane areas as weights (the revolved volumes would pull every node away from the axis). A move
+   is limited to a quarter of the node's shortest edge, so that each face sweeps only into its two elements. A node
+   of the struck face or of the tunnel wall slides along it (the polyline through it and its neighbours) toward
+   the middle of its neighbours' arc, so the boundary keeps its place (the nose slides on the wall without friction,
+   or nearly).
 2. **Remap of the elements** by swept faces and donor cells (first order): each face's swept volume (exact for the
    axisymmetric volume, so the new volumes are the new geometry's) carries the donor's density, specific internal
    energy, stress and state variables. Mass and internal energy are conserved exactly; the reference volume
@@ -60,6 +62,13 @@ def _quality(X, nr, e):
     c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
     s = c1 + c2 + c3 + c4
     return 4.0 * min(min(c1, c2), min(c3, c4)) / s if s > 0.0 else -1.0
+
+
+@njit(cache=True)
+def _area(X, nr, e):
+    """Element e's area in the (r, z) plane."""
+    a, b, c, d = _nodes_of(nr, e)
+    return 0.5 * ((X[0, c] - X[0, a]) * (X[1, d] - X[1, b]) + (X[0, b] - X[0, d]) * (X[1, c] - X[1, a]))
 
 
 @njit(cache=True)
@@ -154,6 +163,8 @@ def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
     would not be positive (nothing is changed then)."""
     nr, j0, j1, i_max = zone
     nrow = nr + 1
+    nz = X.shape[1] // nrow - 1
+    force = quality >= 1.0   # every node, whatever its elements' shape
     lo = max(j0 + 1, 1)
     # ---- 1. new positions (Jacobi: every target from the Lagrangian positions)
     moved = []
@@ -168,11 +179,11 @@ def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
             if not (alive[ea] == LIVE and alive[eb] == LIVE and alive[ec] == LIVE and alive[ed] == LIVE):
                 continue
             qmin = min(min(_quality(X, nr, ea), _quality(X, nr, eb)), min(_quality(X, nr, ec), _quality(X, nr, ed)))
-            if qmin >= quality:
+            if qmin >= quality and not force:
                 continue
             sv, sr, sz = 0.0, 0.0, 0.0
             for e in (ea, eb, ec, ed):
-                v = _volume(X, nr, e)
+                v = _area(X, nr, e)
                 p, q, s, t = _nodes_of(nr, e)
                 sv += v
                 sr += v * 0.25 * (X[0, p] + X[0, q] + X[0, s] + X[0, t])
@@ -192,7 +203,7 @@ def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
     if j0 == 0:   # the struck face: a node slides along it
         for i in range(1, i_max):
             if nstate[i] == ACTIVE and alive[i] == LIVE and alive[i - 1] == LIVE and (
-                    min(_quality(X, nr, i), _quality(X, nr, i - 1)) < quality):
+                    force or min(_quality(X, nr, i), _quality(X, nr, i - 1)) < quality):
                 tr, tz, ratio = _slide(X, i, i - 1, i + 1, weight)
                 largest = max(largest, ratio)
                 moved.append(i)
@@ -201,7 +212,7 @@ def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
         n = j * nrow
         ea, ed = j * nr, (j - 1) * nr
         if nstate[n] == ACTIVE and alive[ea] == LIVE and alive[ed] == LIVE and (
-                min(_quality(X, nr, ea), _quality(X, nr, ed)) < quality):
+                force or min(_quality(X, nr, ea), _quality(X, nr, ed)) < quality):
             tr, tz, ratio = _slide(X, n, n - nrow, n + nrow, weight)
             largest = max(largest, ratio)
             moved.append(n)
@@ -268,7 +279,13 @@ def rezone(zone, X, V, E, alive, nstate, mass, rho0, quality, weight, out):
         n = moved[k]
         i, j = n % nrow, n // nrow
         g0, g1, g2, g3, sw = 0.0, 0.0, 0.0, 0.0, 0.0
-        for e in (j * nr + i, j * nr + i - 1, (j - 1) * nr + i - 1, (j - 1) * nr + i):
+        for di, dj in ((0, 0), (-1, 0), (-1, -1), (0, -1)):   # the node's elements (two on a boundary)
+            ie, je = i + di, j + dj
+            if ie < 0 or ie >= nr or je < 0 or je >= nz:
+                continue
+            e = je * nr + ie
+            if alive[e] != LIVE:
+                continue
             w = _volume(X, nr, e)
             a, b, c, d = _gradient(X, V, nr, e)
             g0 += w * a

@@ -56,4 +56,4 @@ def all_checks(log=None):
 
 
 # the problems register themselves in PROBLEMS, in this order (the order of the verification table's rows)
-from . import verification_mechanics, verification_contact  # noqa: E402,F401
+from . import verification_mechanics, verification_contact, verification_erosion_free  # noqa: E402,F401

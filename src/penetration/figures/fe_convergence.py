@@ -68,47 +68,77 @@ def contrast_extrapolation_figure(cells, meshes, singles, path, dpi):
 
 
 CONTRAST_COLORS = {"DO/CRH 4.5": "tab:green", "CRH 4.5/CRH 3": "tab:blue", "DO/CRH 3": "tab:purple"}
+HOLE_STYLES = ("-", "--", ":", "-.")
 
 
-def grid_convergence_figure(conv, path, dpi):
-    """Depths (top row) and nose contrasts as depth gains (bottom row) of the erosion-free target against the element
-    size, one column per velocity: each mesh's value, the Richardson extrapolation at zero size with the finest
-    mesh's GCI as its bar (hollow: not in the asymptotic range), and the paper's simulated value."""
+def grid_convergence_figure(conv, holes, path, dpi):
+    """The erosion-free target's grid convergence, one column per velocity: depths (top row) and nose contrasts as
+    depth gains (middle row) against the element size, one line per pilot hole, with each hole's Richardson
+    extrapolation at zero size and the finest mesh's GCI as its bar (hollow: not in the asymptotic range); the
+    zero-size values against the pilot hole (bottom row: depths scaled by their zero-hole value, and the gains),
+    extrapolated to zero hole with the larger of the hole's and the meshes' GCI as the bar; the paper's simulated
+    values as crosses."""
     plt.rcParams.update({"font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
     cols = [c for c in conv.columns if c.startswith("value_at_")]
     across = np.array([float(c.split("_")[2]) for c in cols])
     h = 70.0 / across   # mm: the 70 mm shank radius over the elements across
     vs = sorted(conv.velocity_ms.unique())
-    fig, axes = plt.subplots(2, len(vs), figsize=(2.6 * len(vs), 5.4), sharex=True, squeeze=False)
+    hole_sizes = sorted(conv.pilot_hole.unique(), reverse=True)
+    fig, axes = plt.subplots(3, len(vs), figsize=(3.6 * len(vs), 9.0), squeeze=False)
+    kinds = (("depth_m", NOSE_COLORS, 1.0, 0.0, "depth (m)"),
+             ("depth_ratio", CONTRAST_COLORS, 100.0, 1.0, "depth gain of the contrast (%)"))
     for j, v in enumerate(vs):
-        for i, (quantity, colors, scale, offset) in enumerate((("depth_m", NOSE_COLORS, 1.0, 0.0),
-                                                               ("depth_ratio", CONTRAST_COLORS, 100.0, 1.0))):
+        for i, (quantity, colors, scale, offset, label) in enumerate(kinds):
             ax = axes[i, j]
-            rows = conv[(conv.quantity == quantity) & (conv.velocity_ms == v)]
-            for k, r in enumerate(rows.itertuples()):
-                y = scale * (np.array([getattr(r, c) for c in cols]) - offset)
-                color = colors.get(r.case, "gray")
-                ax.plot(h, y, "o-", ms=3, lw=0.9, color=color, label=r.case)
-                x0 = -0.25 - 0.2 * k
-                ax.errorbar([x0], [scale * (r.extrapolated - offset)], yerr=[scale * r.gci_fine], fmt="s", ms=4,
-                            color=color, mfc=color if r.status == "asymptotic" else "white", capsize=2.5)
-                if np.isfinite(r.paper_simulated):
-                    ax.plot([h.max() + 0.6], [scale * (r.paper_simulated - offset)], **{**PAPER_STYLE, "color": color},
-                            label=None)
+            rows = conv[(conv.quantity == quantity) & (conv.velocity_ms == v)].to_dict("records")
+            for r in rows:
+                k = hole_sizes.index(r["pilot_hole"])
+                color = colors.get(r["case"], "gray")
+                y = scale * (np.array([r[c] for c in cols]) - offset)
+                ax.plot(h, y, "o", ls=HOLE_STYLES[k % 4], ms=2.5, lw=0.9, color=color,
+                        label=r["case"] if k == 0 else None)
+                ax.errorbar([-0.3 - 0.25 * k], [scale * (r["extrapolated"] - offset)], yerr=[scale * r["gci_fine"]],
+                            fmt="s", ms=3.5, color=color, mfc=color if r["status"] == "asymptotic" else "white",
+                            capsize=2)
+            for r in rows[:len(rows) // len(hole_sizes)]:
+                if np.isfinite(r["paper_simulated"]):
+                    ax.plot([h.max() + 0.7], [scale * (r["paper_simulated"] - offset)],
+                            **{**PAPER_STYLE, "color": colors.get(r["case"], "gray")})
             if i == 0:
                 ax.set_title(f"{v:g} m/s")
             if i == 1:
                 ax.axhline(0, color="black", lw=0.5)
-                ax.set_xlabel("element size (mm)")
+            ax.set_xlabel("element size (mm)")
+            ax.set_xlim(-1.3, h.max() + 1.2)
             if j == 0:
-                ax.set_ylabel("depth (m)" if i == 0 else "depth gain of the contrast (%)")
-        axes[0, j].set_xlim(-1.0, h.max() + 1.0)
-    for i in range(2):
-        handles, labels = axes[i, 0].get_legend_handles_labels()
-        axes[i, -1].legend(handles, labels, fontsize=7, loc="best")
-    fig.suptitle("Erosion-free target (Table 1's HJC as stated): Table 3 on meshes refined by "
-                 f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius)\n"
-                 "squares at zero size: Richardson extrapolation with the finest mesh's GCI (hollow: not in the "
-                 "asymptotic range); crosses at the right: the paper's simulation", fontsize=9)
-    fig.subplots_adjust(top=0.86, wspace=0.3, hspace=0.12)
+                ax.set_ylabel(label)
+        ax = axes[2, j]
+        t = holes[holes.velocity_ms == v].to_dict("records")
+        for r in t:
+            x = np.array(hole_sizes)
+            f = np.array([r[f"zero_size_at_hole_{x_:g}"] for x_ in hole_sizes])
+            if r["quantity"] == "depth_m":
+                y, y0, err = 100 * (f / r["at_zero_hole"] - 1), 0.0, 100 * r["uncertainty"] / r["at_zero_hole"]
+                color, name = NOSE_COLORS.get(r["case"], "gray"), f"{r['case']} depth, % of its zero-hole value"
+            else:
+                y, y0, err = 100 * (f - 1), 100 * (r["at_zero_hole"] - 1), 100 * r["uncertainty"]
+                color, name = CONTRAST_COLORS.get(r["case"], "gray"), f"{r['case']} gain (%)"
+                if np.isfinite(r["paper_simulated"]):
+                    ax.plot([0.56], [100 * (r["paper_simulated"] - 1)], **{**PAPER_STYLE, "color": color})
+            ax.plot(x, y, "o-" if r["quantity"] == "depth_ratio" else "o:", ms=3, lw=0.9, color=color, label=name)
+            ax.errorbar([0.0], [y0], yerr=[err], fmt="s", ms=3.5, color=color, capsize=2,
+                        mfc=color if r["hole_status"] == "asymptotic" else "white")
+        ax.set_xlabel("pilot hole / shank radius")
+        ax.set_xlim(-0.04, 0.6)
+        if j == 0:
+            ax.set_ylabel("at zero element size (%)")
+    axes[0, -1].legend(fontsize=7, loc="best")
+    axes[1, -1].legend(fontsize=7, loc="best")
+    axes[2, -1].legend(fontsize=6, loc="best")
+    fig.suptitle("Erosion-free target (Table 1's HJC as stated): Table 3 rows on meshes refined by "
+                 f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius) "
+                 f"at pilot holes of {', '.join(f'{x:g}' for x in hole_sizes)} of it (solid, dashed, dotted)\n"
+                 "squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range); crosses: the "
+                 "paper's simulation (LS-DYNA with erosion)", fontsize=9)
+    fig.subplots_adjust(top=0.92, wspace=0.22, hspace=0.3)
     save(fig, path, dpi)

@@ -1,0 +1,72 @@
+"""The erosion-free target's grid-convergence study on synthetic shots whose depths follow an exact error law:
+the study must recover each limit, order and the goals' verdicts (an independent oracle: the law itself)."""
+import numpy as np
+import pandas as pd
+import pytest
+
+from penetration import grid_study
+from penetration.mesh_convergence import MONOTONE
+
+ACROSS = {"m1": 8.192, "m2": 10.24, "m3": 12.8, "m4": 16.0}
+HOLES = (0.5, 0.25, 0.125)
+LIMIT = {"double_ogive": 3.3, "crh45": 3.1, "crh3": 3.0}
+
+
+def depth(nose, v, n, hole, p=2.0, c=-30.0, q=2.0, k=1.5):
+    h = 0.07 / n
+    return LIMIT[nose] * v / 500.0 + c * h ** p + k * hole ** q
+
+
+def shots(**law):
+    out = []
+    for hole in HOLES:
+        for prof, n in ACROSS.items():
+            for nose in LIMIT:
+                for v in (500.0, 1200.0):
+                    out.append({"profile": prof, "element_size": 0.07 / n, "nose": nose, "velocity": v,
+                                "target": {"formulation": "erosion_free", "pilot_hole": hole},
+                                "depth_m": depth(nose, v, n, hole, **law), "wall_time_s": n ** 3, "steps": 1000 * n,
+                                "elements": 100 * n * n, "energy_error_max": 1e-4, "eroded_mass_kg": 0.0,
+                                "ejected_mass_kg": 1.0, "remap_energy_j": 0.0, "status": "rest"})
+    return out
+
+
+def test_the_study_recovers_the_limits_orders_and_goals_of_an_exact_error_law():
+    s = grid_study.shot_rows(shots(), ACROSS)
+    paper = {(v, n): 1.05 * LIMIT[n] * v / 500.0 for n in LIMIT for v in (500.0, 1200.0)}
+    conv = grid_study.convergence_rows(s, paper, 0.01, 0.01)
+    d = conv[conv.quantity == "depth_m"]
+    assert len(d) == 3 * 6 and (d.status == MONOTONE).all()
+    np.testing.assert_allclose(d.observed_order, 2.0, rtol=1e-6)
+    for r in d.itertuples():
+        assert r.extrapolated == pytest.approx(LIMIT[r.case] * r.velocity_ms / 500.0 + 1.5 * r.pilot_hole ** 2, rel=1e-10)
+    holes = grid_study.hole_rows(conv, 0.01, 0.01)
+    dd = holes[holes.quantity == "depth_m"]
+    np.testing.assert_allclose(dd.hole_order, 2.0, rtol=1e-6)
+    for r in dd.itertuples():
+        assert r.at_zero_hole == pytest.approx(LIMIT[r.case] * r.velocity_ms / 500.0, rel=1e-10)
+        assert not r.paper_inside   # the paper's values are 5 % off the limits here
+    ratio = holes[(holes.quantity == "depth_ratio") & (holes.case == "DO/CRH 4.5")]
+    assert len(ratio) == 2 and all(abs(r.at_zero_hole - 3.3 / 3.1) < 5e-3 for r in ratio.itertuples())
+    cost = grid_study.cost_rows(s)
+    assert list(cost.elements_across) == sorted(ACROSS.values()) and (cost.shots == 18).all()
+
+
+def test_the_goals_fail_when_the_fine_mesh_is_too_far_from_the_limit():
+    s = grid_study.shot_rows(shots(c=-3000.0), ACROSS)   # a large mesh error: GCI about 1-2 %
+    conv = grid_study.convergence_rows(s, {}, 0.01, 0.01)
+    d = conv[conv.quantity == "depth_m"]
+    assert (d.status == MONOTONE).all()
+    assert list(d.goal_met) == list(d.gci_fine_relative <= 0.01)
+    assert 0 < d.goal_met.sum() < len(d)
+
+
+def test_the_study_refuses_meshes_not_refined_by_one_ratio_and_another_formulation():
+    with pytest.raises(ValueError, match="constant ratio"):
+        grid_study.refinement_ratio([8.0, 10.0, 13.0])
+    bad = shots()
+    bad[0]["target"] = {"formulation": "eroding", "pilot_hole": 0.25}
+    with pytest.raises(ValueError, match="erosion_free"):
+        grid_study.shot_rows(bad, ACROSS)
+    with pytest.raises(ValueError, match="profile"):
+        grid_study.shot_rows(shots(), {"m1": 8.192})
