@@ -139,3 +139,23 @@ def test_fe_limit_rows_compare_the_extrapolated_increment_with_the_paper():
     assert r.status == "deviates" and "9.7 to 19.7 points" in r.case
     (r,) = fe_limit_rows(refs, [{**row, "interval_low": 1.0}])
     assert r.status == "undecided"
+
+
+@pytest.mark.parametrize("ratio, band, status, ranking", [(1.0686, 0.005, "reproduced", "reproduced"),
+                                                          (1.0, 0.01, "deviates", "undecided"),
+                                                          (1.05, 0.03, "undecided", "reproduced"),
+                                                          (0.97, 0.01, "deviates", "deviates")])
+def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_band(ratio, band, status, ranking):
+    """DO/CRH 4.5 at 800 m/s (the paper's simulation: +6.86 %): the converged ratio with its GCI band against the
+    paper's increment (2 points, nothing calibrated: agreement is a reproduction) and against 1 (the ranking)."""
+    from penetration.diff import erosion_free_rows
+    refs = load_reference(REF)
+    row = {"quantity": "depth_ratio", "case": "DO/CRH 4.5", "velocity_ms": 800.0, "at_zero_hole": ratio,
+           "uncertainty": band, "mesh_status_all_asymptotic": True, "hole_status": "asymptotic"}
+    eroding = [{"contrast": "DO/CRH 4.5", "velocity_ms": 800, "ratio_at_zero_size": 1.147, "interval_low": 1.097,
+                "interval_high": 1.197}]
+    table = [{"contrast": "DO/CRH 4.5", "velocity": 800, "cavity_ratio": 1.031, "analytic_stated_S_ratio": 1.014}]
+    inc, rank = erosion_free_rows(refs, [row, {**row, "quantity": "depth_m", "case": "crh3"}], eroding, table)
+    assert inc.paper == refs["table3.inc_equiv.800.double_ogive"].value and inc.ours == pytest.approx(100 * (ratio - 1))
+    assert inc.status == status and rank.status == ranking
+    assert "eroding FE at zero size 1.147" in inc.case and "cavity level 1.031" in inc.case
