@@ -207,3 +207,20 @@ def test_boundary_nodes_slide_along_their_boundary_and_take_a_linear_velocity_ex
     vr, vz = field(X[0], X[1])
     np.testing.assert_allclose(V[S.VR], vr, rtol=0, atol=1e-12)
     np.testing.assert_allclose(V[S.VZ], vz, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("sphere, factor", [(True, 4.0), (False, 2.0)])
+def test_the_1d_cavity_reference_meets_the_elastic_static_wall_stress(sphere, factor):
+    """The independent 1-D cavity (fe.cavity_reference) driven slowly in HJC below yield: its wall zone's stress is
+    the elastic static one at the zone's mid-radius r (Lame): 4 G u a^2/r^3 for a spherical cavity and 2 G u a/r^2
+    for a cylindrical one in plane strain, u = V t averaged over the second half of the run (the waves have long left
+    the wall), within 1 %."""
+    from penetration.fe.cavity_reference import wall_stress
+    from penetration.hjc import HJC
+    material = HJC()
+    V, a, t_end, r_out, zones = 0.002, 0.01, 2e-4, 1.5, 200
+    ours = wall_stress(material, V, a, t_end, 0.5 * t_end, r_out=r_out, zones=zones, sphere=sphere)
+    mean_u = V * 0.75 * t_end                # the mean of V t over the second half
+    r = 0.5 * a * (1.0 + (r_out / a) ** (1.0 / zones))
+    exponent = 3 if sphere else 2
+    assert ours == pytest.approx(factor * material.G * mean_u / a * (a / r) ** exponent, rel=0.01)
