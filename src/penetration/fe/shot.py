@@ -46,10 +46,11 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
     controls = replace(settings.controls, lateral=lateral, bottom=bottom, output_interval=settings.output_interval,
                        window_ahead=settings.window_ahead, window_behind=behind)
     if target.formulation == "erosion_free":
-        # rezoned out to the core; what flies farther than the shank radius above the struck face, or loses its shape
+        # rezoned out to twice the core (the crater's heave reaches past the core); what flies farther than the shank
+        # radius above the struck face, or loses its shape
         # above it, is ejected (fe.rezone.eject, fe.erosion)
         controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False,
-                           rezone_radius=spec.core_radius,
+                           rezone_radius=2.0 * spec.core_radius,
                            eject_height=nose.radius if controls.eject_height is None else controls.eject_height)
     return Model(build(spec), material, controls)
 
