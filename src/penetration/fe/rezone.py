@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .element import moment
+from .element import area2, length as element_length, moment
 from .state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, P, QV, SRR, SRZ, STT, SZZ, TWO_PI,
                     V0, VR, VZ)
 
@@ -51,11 +51,16 @@ def _nodes_of(nr, e):
 
 
 @njit(cache=True)
+def _corners(X, nr, e):
+    """Element e's corner coordinates (r1..r4), (z1..z4), counter-clockwise (``fe.element``'s tuples)."""
+    a, b, c, d = _nodes_of(nr, e)
+    return (X[0, a], X[0, b], X[0, c], X[0, d]), (X[1, a], X[1, b], X[1, c], X[1, d])
+
+
+@njit(cache=True)
 def _quality(X, nr, e):
     """Smallest corner Jacobian over their mean (1 for a parallelogram, <= 0 when inverted)."""
-    a, b, c, d = _nodes_of(nr, e)
-    r1, r2, r3, r4 = X[0, a], X[0, b], X[0, c], X[0, d]
-    z1, z2, z3, z4 = X[1, a], X[1, b], X[1, c], X[1, d]
+    (r1, r2, r3, r4), (z1, z2, z3, z4) = _corners(X, nr, e)
     c1 = (r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1)
     c2 = (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2)
     c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
@@ -67,14 +72,14 @@ def _quality(X, nr, e):
 @njit(cache=True)
 def _area(X, nr, e):
     """Element e's area in the (r, z) plane."""
-    a, b, c, d = _nodes_of(nr, e)
-    return 0.5 * ((X[0, c] - X[0, a]) * (X[1, d] - X[1, b]) + (X[0, b] - X[0, d]) * (X[1, c] - X[1, a]))
+    r, z = _corners(X, nr, e)
+    return 0.5 * area2(r, z)
 
 
 @njit(cache=True)
 def _volume(X, nr, e):
-    a, b, c, d = _nodes_of(nr, e)
-    return TWO_PI * moment(X[0, a], X[0, b], X[0, c], X[0, d], X[1, a], X[1, b], X[1, c], X[1, d])[0]
+    r, z = _corners(X, nr, e)
+    return TWO_PI * moment(r[0], r[1], r[2], r[3], z[0], z[1], z[2], z[3])[0]
 
 
 @njit(cache=True)
@@ -88,9 +93,8 @@ def _swept(Xo, Xn, p, q):
 def _gradient(X, V, nr, e):
     """Velocity gradient (dvr/dr, dvr/dz, dvz/dr, dvz/dz) at element e's centre."""
     a, b, c, d = _nodes_of(nr, e)
-    r1, r2, r3, r4 = X[0, a], X[0, b], X[0, c], X[0, d]
-    z1, z2, z3, z4 = X[1, a], X[1, b], X[1, c], X[1, d]
-    A2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
+    (r1, r2, r3, r4), (z1, z2, z3, z4) = _corners(X, nr, e)
+    A2 = area2((r1, r2, r3, r4), (z1, z2, z3, z4))
     br1, br2 = (z2 - z4) / A2, (z3 - z1) / A2
     bz1, bz2 = (r4 - r2) / A2, (r1 - r3) / A2
     u1, u2, u3, u4 = V[VR, a], V[VR, b], V[VR, c], V[VR, d]
@@ -117,14 +121,10 @@ def _slide(X, n, prev, nxt, weight):
 
 @njit(cache=True)
 def _thin(X, nr, e, length):
-    """Whether element e is thinner than ``length`` (its area over its longest side) or nearly inverted."""
-    a, b, c, d = _nodes_of(nr, e)
-    r1, r2, r3, r4 = X[0, a], X[0, b], X[0, c], X[0, d]
-    z1, z2, z3, z4 = X[1, a], X[1, b], X[1, c], X[1, d]
-    area2 = (r3 - r1) * (z4 - z2) + (r2 - r4) * (z3 - z1)
-    side = max(max((r2 - r1) ** 2 + (z2 - z1) ** 2, (r3 - r2) ** 2 + (z3 - z2) ** 2),
-               max((r4 - r3) ** 2 + (z4 - z3) ** 2, (r1 - r4) ** 2 + (z1 - z4) ** 2))
-    return 0.5 * area2 < length * np.sqrt(side) or _quality(X, nr, e) < 0.2
+    """Whether element e is thinner than ``length`` (its area over its longest side: ``fe.element.length``, the
+    solver's own element length) or nearly inverted."""
+    r, z = _corners(X, nr, e)
+    return element_length(r, z) < length or _quality(X, nr, e) < 0.2
 
 
 @njit(cache=True)
