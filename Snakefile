@@ -137,6 +137,7 @@ STUDY_OUTPUTS = [
     "figures/fe/erosion_free/convergence.png", "figures/fe/erosion_free/convergence.csv",
     "figures/fe/erosion_free/convergence_shots.csv", "figures/fe/erosion_free/convergence_holes.csv",
     "figures/timing/fe_erosion_free_convergence.csv",
+    "figures/fe/erosion_free/quasi_static.csv", "figures/fe/erosion_free/quasi_static_runs.csv",
     "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
     "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",

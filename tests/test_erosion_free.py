@@ -224,3 +224,58 @@ def test_the_1d_cavity_reference_meets_the_elastic_static_wall_stress(sphere, fa
     r = 0.5 * a * (1.0 + (r_out / a) ** (1.0 / zones))
     exponent = 3 if sphere else 2
     assert ours == pytest.approx(factor * material.G * mean_u / a * (a / r) ** exponent, rel=0.01)
+
+
+# ------------------------------------------------------------------ the quasi-static check
+@pytest.mark.parametrize("kwargs, field", [(dict(across=1.0), "across"), (dict(across=6, hole=0.0), "hole"),
+                                           (dict(across=6, hole=1.0), "hole"), (dict(across=6, v=0.0), "v ="),
+                                           (dict(across=6, v=900.0), "v =")])
+def test_the_quasi_static_check_refuses_inputs_out_of_range(kwargs, field):
+    from penetration.fe.quasi_static import driven_force
+
+    with pytest.raises(ValueError, match=field):
+        driven_force(**kwargs)
+
+
+def test_the_quasi_static_task_refines_each_hole_and_judges_the_limit_against_the_band(tmp_path, monkeypatch):
+    """Synthetic runs with an exact second-order error in h: the task recovers the order and the limit of each hole,
+    and its band verdict follows the limit, not the fine mesh; a mesh that stops ends the refinement there."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    import penetration.fe.quasi_static as Q
+    from penetration.io import load_json, write_json
+    from penetration.tasks.fe_erosion_free import fe_quasi_static
+
+    sigma = 500e6
+    limits = {0.25: 480e6, 0.125: 300e6}          # one inside the 25 % band of sigma, one outside
+    monkeypatch.setattr(Q, "references", lambda hole, v: {"cavity_level_sigma_n_pa": sigma, "sphere_from_hole_pa": 1.0,
+                                                          "cylinder_from_hole_pa": 1.0})
+    runs = []
+    for hole, f0 in limits.items():
+        for n in (4.0, 6.0, 9.0, 13.5):
+            path = tmp_path / f"h{hole}_{n}.json"
+            write_json({"elements_across": n, "pilot_hole": hole, "velocity_ms": 40.0,
+                        "force_over_area_pa": f0 * (1 - 0.8 / n ** 2), "force_std_pa": 0.0, "samples": 10,
+                        "eroded_mass_kg": 0.0, "steps": 1, "elements": 1, "status": "end", "wall_time_s": 1.0}, path)
+            runs.append(str(path))
+    out = SimpleNamespace(csv=str(tmp_path / "qs.csv"), runs=str(tmp_path / "runs.csv"))
+    fe_quasi_static(SimpleNamespace(runs=runs), out, SimpleNamespace(velocity=40.0, band=0.25))
+    t = pd.read_csv(out.csv).set_index("pilot_hole")
+    for hole, f0 in limits.items():
+        assert t.loc[hole, "observed_order"] == pytest.approx(2.0, rel=1e-9)
+        assert t.loc[hole, "extrapolated_pa"] == pytest.approx(f0, rel=1e-9)
+        assert t.loc[hole, "status"] == "asymptotic"
+    assert bool(t.loc[0.25, "within_band"]) and not bool(t.loc[0.125, "within_band"])
+    assert len(pd.read_csv(out.runs)) == 8
+    # a mesh that stops: the refinement takes the meshes before it, and fewer than three are no refinement
+    for n, hole in ((13.5, 0.25), (9.0, 0.125)):
+        path = tmp_path / f"h{hole}_{n}.json"
+        write_json({**load_json(path), "force_over_area_pa": float("nan"), "status": "stopped"}, path)
+    fe_quasi_static(SimpleNamespace(runs=runs), out, SimpleNamespace(velocity=40.0, band=0.25))
+    t = pd.read_csv(out.csv).set_index("pilot_hole")
+    assert t.loc[0.25, "meshes_stopped"] == 1 and t.loc[0.25, "status"] == "asymptotic"
+    assert t.loc[0.25, "observed_order"] == pytest.approx(2.0, rel=1e-9)
+    assert t.loc[0.125, "status"].startswith("incomplete") and math.isnan(t.loc[0.125, "extrapolated_pa"])
+    assert not bool(t.loc[0.125, "within_band"])

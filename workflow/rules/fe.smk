@@ -263,6 +263,34 @@ use rule fe_fig12 as fe_erosion_free_convergence with:
     log: "results/logs/fe_erosion_free_convergence.log",
 
 
+# The quasi-static check of the erosion-free target (a study): a CRH 3 ogive driven at a low speed, each mesh and
+# hole one job (fe.quasi_static); then its refinement against the cavity stresses.
+QS = config["fe_erosion_free"]["quasi_static"]
+
+
+rule fe_quasi_static_run:
+    input: **task("tasks.fe_erosion_free"),
+    output: json="results/fe/quasi_static/hole{hole}_across{across}.json",
+    params: across=lambda w: w.across, hole=lambda w: w.hole, velocity=QS["velocity"],
+    threads: 2
+    resources: mem_mb=2000, runtime=20
+    benchmark: "results/benchmarks/fe_quasi_static_run_hole{hole}_across{across}.tsv"
+    log: "results/logs/fe_quasi_static_run_hole{hole}_across{across}.log",
+    script: "../scripts/run_task.py"
+
+
+rule fe_quasi_static:
+    input: **task("tasks.fe_erosion_free"),
+           runs=[f"results/fe/quasi_static/hole{h:g}_across{n:g}.json" for h in QS["holes"] for n in QS["across"]],
+    output: csv="figures/fe/erosion_free/quasi_static.csv", runs="figures/fe/erosion_free/quasi_static_runs.csv",
+    params: velocity=QS["velocity"], band=QS["band"],
+    threads: 1
+    resources: mem_mb=1000, runtime=10
+    benchmark: "results/benchmarks/fe_quasi_static.tsv"
+    log: "results/logs/fe_quasi_static.log",
+    script: "../scripts/run_task.py"
+
+
 def fe_ensemble_members(profile):
     """The JSONs of the Table 3 ensemble's members k >= 1 at a profile (member 0 is the profile's own Table 3 shot)."""
     n = config["fe_ensemble"]["members"]
