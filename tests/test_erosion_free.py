@@ -180,12 +180,40 @@ def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
     assert r.status == "rest" and 0.5 < r.depth < 4.0
     assert m.eroded_mass == 0.0 and not np.any(m.alive == S.ERODED)
     ejected = np.flatnonzero(m.alive == S.EJECTED)
-    assert np.all(m.z[m.conn[ejected]].mean(axis=1) < 0.0)
+    assert np.all(m.z[m.conn[ejected]].mean(axis=1) < 4 * 0.07)    # the lip, or debris of the crater (4 a deep)
+    assert 0.0 <= m.crater_debris_mass <= m.ejected_mass
     kept = m.mass.sum()
     total = m.E[S.MASS].sum()
     assert kept == pytest.approx(total, rel=1e-12)   # the ejecta's mass is still on the nodes
     assert max(abs(row["energy_error"]) for row in r.audit) < 1e-3
     assert r.summary()["tunnel_eroded_share"] == 0.0
+
+
+def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_deeper_inside():
+    """erosion.retire on the erosion-free target: an element that lost its shape above the struck face is ejected
+    (its mass kept on the nodes), one less than crater_depth below it is crater debris (ejected, its mass booked as
+    such), and one deeper stops the run with its place named."""
+    from penetration.fe.erosion import InsideTarget, retire
+    from penetration.fe.model import Model
+    from penetration.hjc import HJC
+    g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
+    m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
+                                 crater_depth=0.08))
+    zc = m.z[m.conn].mean(axis=1)
+    lip = int(np.argmin(zc))                          # the first row, its centre above z = 0 once moved up
+    m.z[m.conn[lip]] -= 0.02
+    debris = int(np.flatnonzero((zc > 0.03) & (zc < 0.07))[0])
+    deep = int(np.flatnonzero(zc > 0.1)[0])
+    total = m.mass.sum()
+    m.alive[[lip, debris]] = S.ERODING
+    assert retire(m) == 2
+    assert m.alive[lip] == S.EJECTED and m.alive[debris] == S.EJECTED
+    assert m.crater_debris_mass == pytest.approx(m.E[S.MASS, debris], rel=1e-15)
+    assert m.ejected_mass == pytest.approx(m.E[S.MASS, [lip, debris]].sum(), rel=1e-15)
+    assert m.mass.sum() == total and m.eroded_mass == 0.0
+    m.alive[deep] = S.ERODING
+    with pytest.raises(InsideTarget, match=f"element {deep} "):
+        retire(m)
 
 
 def test_boundary_nodes_slide_along_their_boundary_and_take_a_linear_velocity_exactly():

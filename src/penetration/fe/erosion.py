@@ -35,13 +35,16 @@ def retire(model):
     if just.size == 0:
         return 0
     if model.erosion_free:
-        # the guard's elements are ejecta only above the struck face: none inside the target may go
+        # the guard's elements are ejecta above the struck face and debris in the crater (down to crater_depth below
+        # it, where concrete spalls from the free surface): none deeper inside the target may go
         zc = model.z[model.conn[just]].mean(axis=1)
-        inside = just[zc >= 0.0]
-        if inside.size:
-            raise InsideTarget(f"{model.where(int(inside[0]))} lost its shape inside the target at t = {model.t:.6g} s")
+        crater = model.controls.crater_depth or 0.0
+        deep = just[zc >= crater]
+        if deep.size:
+            raise InsideTarget(f"{model.where(int(deep[0]))} lost its shape inside the target at t = {model.t:.6g} s")
         model.alive[just] = EJECTED
         model.ejected_mass += float(model.E[MASS, just].sum())
+        model.crater_debris_mass += float(model.E[MASS, just[zc >= 0.0]].sum())
         model.E_ejecta += float(model.E[IE, just].sum())
     else:
         model.alive[just] = ERODED

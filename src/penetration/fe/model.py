@@ -116,6 +116,7 @@ class Model:
         self.load_i, self.load_f = np.zeros(0, np.int64), np.zeros((2, 0))
         self.erosion_free = c.erosion_free   # the erosion-free target: its guard ejects, never erodes (fe.erosion)
         self.ejected_mass = 0.0
+        self.crater_debris_mass = 0.0   # of the ejected: below the struck face, in the crater (fe.erosion.retire)
         self.E_ejecta = 0.0
         self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.rezone: energy, momentum, moves)
         rz = np.inf if c.rezone_radius is None else c.rezone_radius

@@ -45,7 +45,8 @@ def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: H
     t0 = time.perf_counter()
     g = build(MeshSpec(a / across, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
     m = Model(g, material or HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False,
-                                            rezone_radius=8 * a, eject_height=a, lateral="non_reflecting",
+                                            rezone_radius=8 * a, eject_height=a, crater_depth=4 * a,
+                                            lateral="non_reflecting",
                                             bottom="non_reflecting", end_time=end, output_interval=end / 200))
     p = Projectile(zeta, rho, 1e6, 0.0, v)      # 1e6 kg: the speed stays within 1e-4 of v
     base = {"elements_across": float(across), "pilot_hole": float(hole), "velocity_ms": float(v)}

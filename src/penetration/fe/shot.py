@@ -51,7 +51,8 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
         # above it, is ejected (fe.rezone.eject, fe.erosion)
         controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False,
                            rezone_radius=2.0 * spec.core_radius,
-                           eject_height=nose.radius if controls.eject_height is None else controls.eject_height)
+                           eject_height=nose.radius if controls.eject_height is None else controls.eject_height,
+                           crater_depth=4.0 * nose.radius if controls.crater_depth is None else controls.crater_depth)
     return Model(build(spec), material, controls)
 
 
@@ -147,6 +148,7 @@ class ShotResult:
                 "momentum_error_final": last["momentum_error"], "hourglass_over_internal": last["hourglass"] / max(ie, 1e-300),
                 "contact_loss_fraction": last["contact"] / max(last["total"], 1e-300), "attempts": self.attempts,
                 "tunnel_eroded_share": self.tunnel_eroded_share, "ejected_mass_kg": last.get("ejected_mass", 0.0),
+                "crater_debris_mass_kg": last.get("crater_debris_mass", 0.0),
                 "remap_energy_j": last.get("remap", 0.0),
                 **{f"dt_share_{k}": v for k, v in self.dt_shares.items()}, "dt_control": self.dt_control}
 

@@ -62,6 +62,8 @@ class Controls:
     eject_length: float = 0.25          # an element above the struck face thinner than this many element sizes is ejected
     eject_height: float | None = None   # m: one whose centre is farther above the face than this too (None: no
     #                                     ejection at all: a problem without a struck face)
+    crater_depth: float | None = None   # m: an element that loses its shape less than this below the struck face is
+    #                                     crater debris, ejected like the lip (None: none; deeper ones stop the run)
 
     def __post_init__(self):
         if not 0.0 < self.dt_factor <= 1.0:
@@ -93,6 +95,8 @@ class Controls:
             raise ParameterError("fe controls", "eject_length", self.eject_length, "0 < eject_length <= 1 (element sizes)")
         if self.eject_height is not None and not self.eject_height > 0:
             raise ParameterError("fe controls", "eject_height", self.eject_height, "> 0 (m) or None")
+        if self.crater_depth is not None and not self.crater_depth >= 0:
+            raise ParameterError("fe controls", "crater_depth", self.crater_depth, ">= 0 (m) or None")
         if self.rezone_radius is not None and not self.rezone_radius > 0:
             raise ParameterError("fe controls", "rezone_radius", self.rezone_radius, "> 0 (m) or None")
 
