@@ -307,3 +307,12 @@ def test_the_quasi_static_task_refines_each_hole_and_judges_the_limit_against_th
     assert t.loc[0.25, "observed_order"] == pytest.approx(2.0, rel=1e-9)
     assert t.loc[0.125, "status"].startswith("incomplete") and math.isnan(t.loc[0.125, "extrapolated_pa"])
     assert not bool(t.loc[0.125, "within_band"])
+    # an oscillating sequence is judged on the range of its finest three meshes
+    for n, f in ((4.0, 420e6), (6.0, 380e6), (9.0, 330e6), (13.5, 400e6)):
+        path = tmp_path / f"h0.25_{n}.json"
+        write_json({**load_json(path), "force_over_area_pa": f, "status": "end"}, path)
+    fe_quasi_static(SimpleNamespace(runs=runs), out, SimpleNamespace(velocity=40.0, band=0.25))
+    t = pd.read_csv(out.csv).set_index("pilot_hole")
+    assert t.loc[0.25, "status"] == "oscillatory"
+    assert (t.loc[0.25, "judged_low_pa"], t.loc[0.25, "judged_high_pa"]) == (330e6, 400e6)
+    assert not bool(t.loc[0.25, "within_band"])            # 330 MPa is 34 % below 500
