@@ -196,6 +196,42 @@ def erosion(read) -> str:
             "`figures/fe/full/summary.json`).\n")
 
 
+def erosion_free(read) -> str:
+    """The erosion-free FE target's nose contrasts at zero element size and zero pilot hole (a study), with the
+    meshes' and the holes' statuses, the GCI goals met and the study's cost."""
+    base = "figures/fe/erosion_free/"
+    holes = [r for r in _rows(read, base + "convergence_holes.csv") if r["quantity"] == "depth_ratio"]
+    conv = _rows(read, base + "convergence.csv")
+    cost = _rows(read, "figures/timing/fe_erosion_free_convergence.csv")
+    lines = ["| contrast | velocity (m/s) | paper's simulation | erosion-free at zero size and hole | meshes | holes | "
+             "ranking (ratio > 1) |", "|---|---|---|---|---|---|---|"]
+    for r in holes:
+        ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
+        rank = "holds" if ratio - band > 1 else ("fails" if ratio + band < 1 else "undecided")
+        lines.append(f"| {r['case']} | {float(r['velocity_ms']):.0f} | {float(r['paper_simulated']):.3f} | "
+                     f"{ratio:.3f} +- {band:.3f} | {'asymptotic' if r['mesh_status_all_asymptotic'] == 'True' else 'not all asymptotic'} | "
+                     f"{r['hole_status']} | {rank} |")
+    met = {q: sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q) for q in ("depth_m", "depth_ratio")}
+    total = {q: sum(r["quantity"] == q for r in conv) for q in ("depth_m", "depth_ratio")}
+    status = {}
+    for r in conv:
+        status[r["status"]] = status.get(r["status"], 0) + 1
+    across = sorted(float(r["elements_across"]) for r in cost)
+    shots = sum(int(r["shots"]) for r in cost)
+    hours = sum(float(r["wall_time_sum_s"]) for r in cost) / 3600
+    per = "; ".join(f"{float(r['elements_across']):g} across {_span(r['wall_time_mean_s'])}"
+                    for r in sorted(cost, key=lambda r: float(r["elements_across"])))
+    lines += ["", f"The band is the larger of the holes' GCI and the meshes' largest. Per hole, the GCI goals "
+              f"(depth {100 * float(next(r['gci_goal'] for r in conv if r['quantity'] == 'depth_m')):g} %, contrast "
+              f"{100 * float(next(r['gci_goal'] for r in conv if r['quantity'] == 'depth_ratio')):g} point) are met "
+              f"by {met['depth_m']} of {total['depth_m']} depths and {met['depth_ratio']} of {total['depth_ratio']} "
+              f"contrasts; statuses {', '.join(f'{k} {v}' for k, v in sorted(status.items()))} "
+              f"(`{base}convergence.csv`, `{base}convergence_holes.csv`). {shots} shots on meshes of "
+              f"{across[0]:g}-{across[-1]:g} elements across, {hours:.1f} h of job time; mean per shot: {per} "
+              "(`figures/timing/fe_erosion_free_convergence.csv`)."]
+    return "\n".join(lines) + "\n"
+
+
 def fe_speed(read) -> str:
     """Every run of workflow/benchmarks/fe_speed.py, per machine: time per element-step against the floor."""
     rows = _rows(read, "figures/timing/fe_speed.csv")
@@ -304,7 +340,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free}
 
 
 def render(text: str, read) -> str:

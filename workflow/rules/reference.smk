@@ -22,6 +22,8 @@ rule diff:
         contrasts="figures/nose_contrasts.csv",
         contrast_table="figures/nose_contrasts_table.csv",
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
+    params: erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
+            eroding=study_input("figures/fe/contrast_extrapolation.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/diff.tsv"

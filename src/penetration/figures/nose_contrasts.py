@@ -36,6 +36,7 @@ def wide_table(data):
 
 
 FE_COLOR = "tab:red"
+FREE_COLOR = "tab:purple"
 
 
 def _fe(ax, name, band, limit):
@@ -52,6 +53,14 @@ def _fe(ax, name, band, limit):
                 label=f"fe: at zero element size, {100 * z.confidence.iloc[0]:.0f} % interval (21 meshes; a study)")
 
 
+def _free(ax, name, free):
+    """The erosion-free FE target on a ratio panel (a study): the contrast at zero element size and zero pilot hole
+    with its band (the larger of the holes' and the meshes' GCI)."""
+    z = free[(free.quantity == "depth_ratio") & (free.case == name)]
+    ax.errorbar(z.velocity_ms, z.at_zero_hole, yerr=z.uncertainty, fmt="D", ms=4, color=FREE_COLOR, capsize=2, lw=1,
+                label="fe, erosion-free target: at zero element size and zero pilot hole, GCI band (a study)")
+
+
 @task
 def nose_contrasts(inputs, outputs, params):
     data = pd.read_csv(inputs.csv)
@@ -61,7 +70,7 @@ def nose_contrasts(inputs, outputs, params):
     fig, axes = figure(4, 4.0, 4.0)
     fig.subplots_adjust(wspace=0.3)
     t3 = data[data.source == "table3"]
-    band, limit = committed_study(params.band), committed_study(params.limit)
+    band, limit, free = committed_study(params.band), committed_study(params.limit), committed_study(params.free)
     for ax, name in zip(axes, PANELS):
         d = data[data.contrast == name]
         for (level, variant), style in LINES.items():
@@ -80,6 +89,7 @@ def nose_contrasts(inputs, outputs, params):
             ax.annotate(f"text: +{claim.value:g} %", (1400, 1 + claim.value / 100), fontsize=7, ha="right",
                         va="bottom")
         _fe(ax, name, band, limit)
+        _free(ax, name, free)
         ax.axhline(1.0, color="k", lw=0.6)
         ax.set(xlabel="striking velocity (m/s)", ylabel="depth ratio", title=f"{name} depth ratio")
     gains = data[(data.source == "fig15") & (data.contrast.isin(GAINS_1200))]

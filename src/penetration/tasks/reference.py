@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from .. import diff as diff_rows, reference
-from ..io import load_json, task, write_csv, write_text
+from ..io import committed_study, load_json, task, write_csv, write_text
 
 
 def _bands_dict(path, noses_table):
@@ -88,7 +88,10 @@ def diff(inputs, outputs, params):
     ours.update({f"mass.{n}": float(by.loc[n, "mass"]) for n in by.index})
     rows = (diff_rows.table1_rows(refs) + diff_rows.table3_rows(refs) + diff_rows.table4_rows(refs, ours)
             + diff_rows.fig03_rows(refs, _bands_dict(inputs.bands, table)) + diff_rows.fig05_rows(refs, ours)
-            + _model_rows(refs, inputs))
+            + _model_rows(refs, inputs)
+            + diff_rows.erosion_free_rows(refs, committed_study(params.erosion_free).to_dict("records"),
+                                          committed_study(params.eroding).to_dict("records"),
+                                          pd.read_csv(inputs.contrast_table).to_dict("records")))
     frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=diff_rows.COLUMNS)
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")
