@@ -138,6 +138,10 @@ STUDY_OUTPUTS = [
     "figures/fe/erosion_free/convergence_shots.csv", "figures/fe/erosion_free/convergence_holes.csv",
     "figures/timing/fe_erosion_free_convergence.csv",
     "figures/fe/erosion_free/quasi_static.csv", "figures/fe/erosion_free/quasi_static_runs.csv",
+    "figures/fe/erosion_free/calibrated.csv", "figures/fe/erosion_free/calibration.csv",
+    *[f"figures/fe/erosion_free/window_{shot}{part}.csv" for shot in config["fe_erosion_free"]["window"]["shots"]
+      for part in ("", "_summary")],
+    *[f"figures/timing/fe_erosion_free_window_{shot}.csv" for shot in config["fe_erosion_free"]["window"]["shots"]],
     "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
     "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",

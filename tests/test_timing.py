@@ -65,7 +65,9 @@ def test_the_pipelines_own_patterns_attribute_sample_records():
                "fe_ensemble_shot_rear_face_full_do1_block_m3": "fe_ensemble_shot",
                "fe_ensemble_shot_ensemble_fine_crh45_1200_m2": "fe_ensemble_shot",
                "calibrate_fe_do1_finer_h0.00583333333333": "calibrate_fe_do1", "fe_table3_full": "fe_table3",
-               "fe_window_study_ci": "fe_window_study", "fe_rear_face": "fe_rear_face", "report": "report"}
+               "fe_window_study_ci": "fe_window_study", "fe_rear_face": "fe_rear_face", "report": "report",
+               "calibrate_fe_strength_do1_free1600_table3_erosion_free_calibrated": "calibrate_fe_strength_do1",
+               "fe_erosion_free_window_crh3_1200": "fe_erosion_free_window"}
     got = attribute([f"results/benchmarks/{k}.tsv" for k in samples], patterns)
     assert [g["rule"] for g in got] == list(samples.values())
     assert got[3]["wc_family"] == "rear_face" and got[4]["wc_profile"] == "fine"

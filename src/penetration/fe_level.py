@@ -1,5 +1,5 @@
-"""The finite-element level for shots: a scene's run spec, the calibration of the erosion strain on a measured
-depth, and the cost of a shot before it runs.
+"""The finite-element level for shots: a scene's run spec, the calibration of the erosion strain (eroding target) or
+of a strength scale (erosion-free target) on a measured depth, and the cost of a shot before it runs.
 
 The failure strain fs (erosion on the equivalent plastic strain) is a
 numerical parameter bound to the mesh: it is calibrated per element size on
@@ -45,8 +45,14 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
     if not np.any(np.isclose(scene.velocities, v)):
         raise ValueError(f"{scene.name}: velocity {v} is not among the scene's {list(scene.velocities)}")
     switches = concrete.material_switches(scene.effects, scene.material, concrete_cfg)
-    material = concrete.configured(refs, concrete_cfg, **switches)
     settings = Settings.from_config(fe_cfg, profile)
+    target = TargetSpec.from_scene(scene.fe, fe_cfg["target_radius"], fe_cfg["block_depth"])
+    scale, scale_provenance, scaled = 1.0, "none (Table 1's HJC as stated)", {}
+    if scene.fe.get("strength_scale") == "calibrated":
+        scale, scale_provenance = _strength_calibration(scene, calibration, settings, target, profile)
+        scaled = {"strength_scale": scale}
+        calibration = None   # the record belongs to the strength scale, not to an erosion strain
+    material = concrete.configured(refs, concrete_cfg, **switches, **scaled)
     fs = scene.fe.get("erosion_strain")
     provenance = "none (no erosion: only the guards remove inverted elements)"
     if fs == "calibrated":
@@ -58,47 +64,70 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
         fs, provenance = calibration["fs"], f"calibrated on DO1 at element size {calibration['element_size']} m"
     if fs is not None:
         settings = settings.with_failure_strain(float(fs))
-    target = TargetSpec.from_scene(scene.fe, fe_cfg["target_radius"], fe_cfg["block_depth"])
     spec = RunSpec(scene.noses[nose], scene.mass, v * velocity_factor, material, settings, target, expected_depth,
                    scene.friction)
-    return spec, {"failure_strain": fs, "failure_strain_provenance": provenance, "material_switches": switches}
+    return spec, {"failure_strain": fs, "failure_strain_provenance": provenance, "material_switches": switches,
+                  "strength_scale": scale, "strength_scale_provenance": scale_provenance}
 
 
-def calibrate_failure_strain(spec: RunSpec, depth, bracket=(0.2, 3.0), tol_m=0.02, max_runs=14, log=None, memo=None):
-    """fs making the FE depth of the shot ``spec`` equal ``depth``; returns fs, the runs and the residual. ``log``:
-    a callable told each trial and the solver's progress (None: quiet).
+def _strength_calibration(scene, calibration, settings, target, profile):
+    """The DO1 strength scale of an erosion-free scene (fe.strength_scale: calibrated) from its record, checked to
+    belong to the scene's mesh and target: (scale, provenance)."""
+    if target.formulation != "erosion_free":
+        raise ValueError(f"{scene.name}: fe.strength_scale 'calibrated' on a {target.formulation} target; allowed on "
+                         f"the erosion_free target only (an eroding target calibrates its erosion_strain)")
+    if calibration is None:
+        raise ValueError(f"{scene.name}: strength_scale 'calibrated' needs the DO1 calibration on its target at the "
+                         f"{profile} mesh")
+    if not math.isclose(calibration["element_size"], settings.element_size):
+        raise ValueError(f"{scene.name}: strength-scale calibration at element size {calibration['element_size']} m "
+                         f"used on a {settings.element_size} m mesh")
+    want = {"formulation": target.formulation, "pilot_hole": target.pilot_hole}
+    got = {k: calibration["data"]["target"].get(k) for k in want}
+    if got != want:
+        raise ValueError(f"{scene.name}: strength-scale calibration on a target {got} used on {want}")
+    return float(calibration["strength_scale"]), (f"calibrated on DO1 at element size {calibration['element_size']} m, "
+                                                  f"{target.formulation} target, pilot hole {target.pilot_hole:g}")
 
-    ``memo``: a mapping of finished trials (fs -> the run's record) kept by the caller across interruptions; a trial
-    found there is not run again (the iteration is deterministic, so an interrupted calibration resumes where it
-    stopped). The caller keys it by everything a trial depends on."""
+
+def calibrate_on_depth(spec: RunSpec, depth, name, trial, bracket, tol_m=0.02, max_runs=14, log=None, memo=None):
+    """The value x of the parameter ``name`` making the FE depth of the shot ``trial(spec, x)`` equal ``depth``, for a
+    parameter the depth falls with (the failure strain, a strength scale); returns {name: x, the residual, the runs}.
+
+    The root is sought in log x by a bracketing secant (Illinois) from ``bracket`` and stops when a depth is within
+    ``tol_m`` of the target (the FE depth carries a noise of a few tenths of a per cent: the best run is kept).
+    ``log``: a callable told each trial and the solver's progress (None: quiet). ``memo``: a mapping of finished
+    trials (repr(x) -> the run's record) kept by the caller across interruptions; a trial found there is not run
+    again (the iteration is deterministic, so an interrupted calibration resumes where it stopped). The caller keys
+    it by everything a trial depends on."""
     runs = []
 
-    def miss(log_fs):
-        fs = math.exp(log_fs)
-        key = repr(fs)
+    def miss(log_x):
+        x = math.exp(log_x)
+        key = repr(x)
         if memo is not None and key in memo:
             rec = dict(memo[key])
             if log:
-                log(f"fs {fs:.5f}: depth {rec['depth_m']:.4f} m ({rec['status']}; a finished trial, not run again)")
+                log(f"{name} {x:.5f}: depth {rec['depth_m']:.4f} m ({rec['status']}; a finished trial, not run again)")
         else:
             # one attempt: a run that reaches the bottom of the domain is deeper than the target already
             with progress_to(log):
-                r = run_shot(spec.with_failure_strain(fs), max_attempts=1)
+                r = run_shot(trial(spec, x), max_attempts=1)
             sm = r.summary()
-            rec = {"fs": fs, "depth_m": r.depth, "wall_time_s": r.wall_time, "status": r.status,
+            rec = {name: x, "depth_m": r.depth, "wall_time_s": r.wall_time, "status": r.status,
                    "energy_error_max": sm["energy_error_max"], "peak_deceleration_m_s2": r.peak_deceleration,
                    "elements": r.elements, "steps": r.steps}
             if memo is not None:
                 memo[key] = rec
             if log:
-                log(f"fs {fs:.5f}: depth {r.depth:.4f} m ({r.status}, {r.wall_time:.1f} s)")
+                log(f"{name} {x:.5f}: depth {r.depth:.4f} m ({r.status}, {r.wall_time:.1f} s)")
         runs.append(rec)
         return rec["depth_m"] - depth
 
     lo, hi = (math.log(b) for b in bracket)
     f_lo, f_hi = miss(lo), miss(hi)
     if f_lo < 0 or f_hi > 0:
-        raise ValueError(f"no failure strain in {bracket} gives {depth} m: {runs}")
+        raise ValueError(f"no {name} in {bracket} gives {depth} m: {runs}")
     side = 0
     for _ in range(max_runs - 2):
         x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
@@ -116,8 +145,24 @@ def calibrate_failure_strain(spec: RunSpec, depth, bracket=(0.2, 3.0), tol_m=0.0
                 f_lo *= 0.5
             side = -1
     best = min(runs, key=lambda r: abs(r["depth_m"] - depth))
-    return {"fs": best["fs"], "residual_m": best["depth_m"] - depth, "relative_residual": (best["depth_m"] - depth) / depth,
+    return {name: best[name], "residual_m": best["depth_m"] - depth, "relative_residual": (best["depth_m"] - depth) / depth,
             "runs": runs, "converged": abs(best["depth_m"] - depth) <= tol_m}
+
+
+def calibrate_failure_strain(spec: RunSpec, depth, bracket=(0.2, 3.0), tol_m=0.02, max_runs=14, log=None, memo=None):
+    """fs making the FE depth of the eroding shot ``spec`` equal ``depth`` (calibrate_on_depth); returns fs, the runs
+    and the residual."""
+    return calibrate_on_depth(spec, depth, "fs", lambda s, fs: s.with_failure_strain(fs), bracket, tol_m, max_runs,
+                              log, memo)
+
+
+def calibrate_strength_scale(spec: RunSpec, depth, material, bracket=(0.3, 3.0), tol_m=0.02, max_runs=14, log=None,
+                             memo=None):
+    """The factor on the whole HJC strength surface making the FE depth of the shot ``spec`` (an erosion-free target:
+    no failure strain to calibrate) equal ``depth``; ``material(scale)`` builds the scaled concrete
+    (calibrate_on_depth). Returns strength_scale, the runs and the residual."""
+    return calibrate_on_depth(spec, depth, "strength_scale", lambda s, k: dataclasses.replace(s, material=material(k)),
+                              bracket, tol_m, max_runs, log, memo)
 
 
 # ------------------------------------------------------------------ cost before a run

@@ -164,11 +164,12 @@ def fe_shot_owners(folder, schema_path) -> dict:
     return owners
 
 
-def fe_calibrated_scenes(folder, schema_path) -> set:
-    """The finite-element scenes whose erosion strain is calibrated on DO1 (their shots need the calibration)."""
+def fe_calibrated_scenes(folder, schema_path, parameter="erosion_strain") -> set:
+    """The finite-element scenes whose ``parameter`` (fe.erosion_strain of an eroding target, fe.strength_scale of an
+    erosion-free one) is calibrated on DO1 (their shots need the calibration)."""
     from .scenes import read_scene
     return {p.stem for p in sorted(Path(folder).glob("*.yaml"))
-            if read_scene(p, schema_path, ("fe",)).get("fe", {}).get("erosion_strain") == "calibrated"}
+            if read_scene(p, schema_path, ("fe",)).get("fe", {}).get(parameter) == "calibrated"}
 
 
 def fe_scene_shots(folder, schema_path) -> dict:

@@ -10,6 +10,18 @@ FE_SCENES = fe_scene_shots("workflow/scenes/fe", SCENE_SCHEMA)
 FE_OWNER = fe_shot_owners("workflow/scenes/fe", SCENE_SCHEMA)
 # the scenes whose shots need the DO1 calibration of their mesh (erosion_strain: calibrated)
 FE_CALIBRATED = fe_calibrated_scenes("workflow/scenes/fe", SCENE_SCHEMA)
+# the erosion-free scenes whose strength scale is calibrated on DO1 on their own target (fe.strength_scale: calibrated)
+FE_STRENGTH_CALIBRATED = fe_calibrated_scenes("workflow/scenes/fe", SCENE_SCHEMA, "strength_scale")
+
+
+def fe_shot_calibration(w):
+    """The DO1 calibration a shot's scene needs: the erosion strain of the profile's mesh, the strength scale of the
+    scene's erosion-free target, or none."""
+    if w.scene in FE_CALIBRATED:
+        return fe_calibration(w.profile)
+    if w.scene in FE_STRENGTH_CALIBRATED:
+        return f"results/fe/{w.profile}/{w.scene}/calibration_do1.json"
+    return []
 
 
 def fe_shots(scene):
@@ -37,10 +49,25 @@ rule calibrate_fe_do1:
     script: "../scripts/run_task.py"
 
 
+# The strength scale of an erosion-free scene's target (fe.strength_scale: calibrated) making the DO1 depth the
+# measured one, at one mesh (a calibration: its residual is written with it).
+rule calibrate_fe_strength_do1:
+    input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json", reference=config["reference"],
+           **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/{scene}/calibration_do1.json",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], shot=config["calibration"]["do1"],
+            profile=lambda w: w.profile, bracket=config["fe_erosion_free"]["calibration"]["bracket"],
+    wildcard_constraints: scene="|".join(sorted(FE_STRENGTH_CALIBRATED)) or "no_scene",
+    threads: 2
+    resources: mem_mb=2000, runtime=90
+    benchmark: "results/benchmarks/calibrate_fe_strength_do1_{profile}_{scene}.tsv"
+    log: "results/logs/calibrate_fe_strength_do1_{profile}_{scene}.log",
+    script: "../scripts/run_task.py"
+
+
 rule fe_shot:
     input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
-           cal=lambda w: fe_calibration(w.profile) if w.scene in FE_CALIBRATED else [],
-           **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
+           cal=fe_shot_calibration, **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{scene}/{nose}_{velocity}.json",
             histories="results/fe/{profile}/{scene}/{nose}_{velocity}_histories.csv",
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
@@ -261,6 +288,47 @@ use rule fe_fig12 as fe_erosion_free_convergence with:
             goal_depth=config["fe_erosion_free"]["gci_goal_depth"], goal_contrast=config["fe_erosion_free"]["gci_goal_contrast"],
     benchmark: "results/benchmarks/fe_erosion_free_convergence.tsv"
     log: "results/logs/fe_erosion_free_convergence.log",
+
+
+# The erosion-free depths with one strength scale calibrated on DO1 (a study: the calibration and the scene's shots at
+# the finest profile), beside the same shots with Table 1's HJC as stated and the paper's Table 3.
+FREE_CAL = config["fe_erosion_free"]["calibration"]
+
+
+rule fe_erosion_free_calibrated:
+    input: **task("tasks.fe_erosion_free"), reference=config["reference"],
+           cal=f"results/fe/{FREE_CAL['profile']}/{FREE_CAL['scene']}/calibration_do1.json",
+           shots=[p.format(profile=FREE_CAL["profile"]) for p in fe_shots(FREE_CAL["scene"])],
+           stated=[p.format(profile=FREE_CAL["profile"]) for p in fe_shots(config["fe_erosion_free"]["scenes"][-1])],
+    output: csv="figures/fe/erosion_free/calibrated.csv", calibration="figures/fe/erosion_free/calibration.csv",
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_erosion_free_calibrated.tsv"
+    log: "results/logs/fe_erosion_free_calibrated.log",
+    script: "../scripts/run_task.py"
+
+
+# The moving window on the erosion-free target (a study): each shot of fe_erosion_free.window with the window and
+# with the whole domain, several realisations each (the task of fe_window_study).
+FREE_WINDOW = config["fe_erosion_free"]["window"]
+
+
+rule fe_erosion_free_window:
+    input: **task("tasks.fe_window"), **GEOMETRY_RESULTS, reference=config["reference"],
+           **scene_input(f"workflow/scenes/fe/{FREE_WINDOW['scene']}.yaml"), schema=SCENE_SCHEMA,
+    output: runs="figures/fe/erosion_free/window_{nose}_{velocity}.csv",
+            summary="figures/fe/erosion_free/window_{nose}_{velocity}_summary.csv",
+            timing="figures/timing/fe_erosion_free_window_{nose}_{velocity}.csv",
+    params: cfg=fe_cfg(FREE_WINDOW["profile"]), hjc=config["concrete"], profile=FREE_WINDOW["profile"],
+            nose=lambda w: w.nose, velocity=lambda w: w.velocity, members=FREE_WINDOW["members"],
+            velocity_step=config["fe_window"]["velocity_step"], confidence=config["fe_window"]["confidence"],
+            goal_pct=config["fe_window"]["goal_pct"],
+    wildcard_constraints: nose="|".join(sorted({n for s in FE_SCENES.values() for n, _ in s}, key=len, reverse=True)),
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/fe_erosion_free_window_{nose}_{velocity}.tsv"
+    log: "results/logs/fe_erosion_free_window_{nose}_{velocity}.log",
+    script: "../scripts/run_task.py"
 
 
 # The quasi-static check of the erosion-free target (a study): a CRH 3 ogive driven at a low speed, each mesh and

@@ -20,7 +20,7 @@ from .. import concrete, reference
 from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
-from ..fe_level import calibrate_failure_strain, scene_spec
+from ..fe_level import calibrate_failure_strain, calibrate_strength_scale, scene_spec
 from ..io import load_json, read_inference, task, write_csv, write_json
 from ..shots import expected_depth
 from .common import calibration_row, do1_shot, scene_from_inputs
@@ -29,12 +29,12 @@ FE = ("fe",)
 
 
 class TrialMemo(dict):
-    """The finished trials of a calibration (fs -> its run's record), appended to a JSON-lines file as each ends, so
+    """The finished trials of a calibration (its parameter ``key``'s value -> its run's record), appended to a JSON-lines file as each ends, so
     that an interrupted calibration resumes where it stopped. The file's name carries a digest of everything a
     trial depends on (the shot, the material, the mesh and run settings, the target, and the sources of the FE
     modules), so that a change to any of them starts afresh."""
 
-    def __init__(self, folder, *definition):
+    def __init__(self, folder, *definition, key="fs"):
         super().__init__()
         from .. import numba_cache
         fe_sources = sorted((numba_cache.PACKAGE / "fe").glob("*.py")) + [numba_cache.PACKAGE / "fe_level.py",
@@ -49,7 +49,7 @@ class TrialMemo(dict):
                     rec = json.loads(line)
                 except json.JSONDecodeError:
                     continue   # a line cut short by a kill
-                super().__setitem__(repr(rec["fs"]), rec)
+                super().__setitem__(repr(rec[key]), rec)
 
     def __setitem__(self, key, rec):
         super().__setitem__(key, rec)
@@ -85,6 +85,42 @@ def calibrate_fe_do1(inputs, outputs, params):
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
 
 
+@task
+def calibrate_fe_strength_do1(inputs, outputs, params):
+    """Strength scale (a factor on the whole HJC strength surface) making the DO1 depth on an erosion-free scene's
+    target equal the measured 5.1 m, at one mesh: the scene's concrete (its material switches) and target (its
+    pilot hole), DO1's nose, mass and striking velocity."""
+    refs = reference.load_reference(inputs.reference)
+    sc = scene_from_inputs(inputs, FE)
+    cfg = params.cfg
+    target = TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])
+    if target.formulation != "erosion_free":
+        raise ValueError(f"{sc.name}: a strength-scale calibration needs an erosion_free target (fe.formulation), "
+                         f"not {target.formulation}")
+    nose = read_inference(inputs.do1)["nose"]
+    mass, vs, depth = do1_shot(refs, params.shot)
+    switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
+    material = lambda k: concrete.configured(refs, params.hjc, strength_scale=k, **switches)
+    settings = Settings.from_config(cfg, params.profile)
+    t0 = time.perf_counter()
+    spec = RunSpec(nose, mass, vs, material(1.0), settings, target,
+                   expected_depth(nose, mass, vs, refs["table1.fc"].si, refs["table1.rho"].si), sc.friction)
+    memo = TrialMemo(Path(outputs.json).parent / "trials", spec.nose, spec.mass, spec.velocity, depth, switches,
+                     spec.settings, spec.target, spec.expected_depth, key="strength_scale")
+    if memo:
+        print(f"{len(memo)} finished trials of this calibration found in {memo.path}: not run again", flush=True)
+    fit = calibrate_strength_scale(spec, depth, material, tuple(params.bracket), cfg["calibration_tol_m"],
+                                   log=lambda line: print(line, flush=True), memo=memo)
+    write_json({"calibration": "fe_strength_do1", "fitted_quantity": "HJC strength_scale: a factor on the whole "
+                "strength surface of Table 1's concrete, on the erosion-free target (no failure strain to calibrate); "
+                "bound to the mesh and the pilot hole it was fitted at",
+                "element_size": settings.element_size, "elements_across_radius": nose.radius / settings.element_size,
+                "profile": params.profile, "scene": sc.name,
+                "data": {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1",
+                         "target": dataclasses.asdict(target)},
+                "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
+
+
 def scene_shot(inputs, params, velocity_factor=1.0):
     """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor); returns (summary, result,
     spec, scene)."""
@@ -93,7 +129,8 @@ def scene_shot(inputs, params, velocity_factor=1.0):
     cfg = params.cfg
     v = float(params.velocity)
     expected = expected_depth(sc.noses[params.nose], sc.mass, v, sc.target.fc, sc.target.rho)
-    cal = load_json(inputs.cal) if sc.fe.get("erosion_strain") == "calibrated" else None
+    calibrated = "calibrated" in (sc.fe.get("erosion_strain"), sc.fe.get("strength_scale"))
+    cal = load_json(inputs.cal) if calibrated else None
     spec, notes = scene_spec(sc, params.nose, v, refs, params.hjc, cfg, params.profile, expected, cal, velocity_factor)
     with progress_to(lambda line: print(line, flush=True)):
         r = run_shot(spec, keep_model=True)
@@ -102,6 +139,8 @@ def scene_shot(inputs, params, velocity_factor=1.0):
                "failure_strain_provenance": notes["failure_strain_provenance"],
                "target": dataclasses.asdict(spec.target), "material_switches": notes["material_switches"],
                "expected_depth_m": expected, "cutoff_hz": spec.settings.cutoff_hz, **r.summary()}
+    if sc.fe.get("strength_scale") == "calibrated":
+        summary.update(strength_scale=notes["strength_scale"], strength_scale_provenance=notes["strength_scale_provenance"])
     return summary, r, spec, sc
 
 

@@ -13,6 +13,7 @@ from ..mesh_convergence import grid_refinement
 from ..figures.fe_convergence import grid_convergence_figure
 from ..io import load_json, task, write_csv, write_json
 from ..reference import TABLE3_NOSES, VELOCITIES, load_reference
+from .common import calibration_row
 
 
 @task
@@ -28,6 +29,39 @@ def fe_erosion_free_convergence(inputs, outputs, params):
     write_csv(holes, outputs.holes)
     write_csv(grid_study.cost_rows(shots), outputs.cost)
     grid_convergence_figure(conv, holes, outputs.png, params.dpi)
+
+
+@task
+def fe_erosion_free_calibrated(inputs, outputs, params):
+    """The erosion-free Table 3 shots with the DO1 strength scale (a calibration) beside the same shots on the same
+    mesh and target with Table 1's HJC as stated, and the paper's simulated depths; and the calibration's row (its
+    fitted quantity, data and residual)."""
+    refs = load_reference(inputs.reference)
+    cal = load_json(inputs.cal)
+    stated = {(s["nose"], float(s["velocity"])): s for s in map(load_json, inputs.stated)}
+    rows = []
+    for shot in map(load_json, inputs.shots):
+        key = (shot["nose"], float(shot["velocity"]))
+        if key not in stated:
+            raise ValueError(f"calibrated shot {key} has no shot with the stated HJC among {sorted(stated)}")
+        base = stated[key]
+        for a, b, name in ((shot, cal, "element_size"), (shot["target"], base["target"], "pilot_hole"),
+                           (shot["target"], base["target"], "formulation")):
+            if a[name] != b[name]:
+                raise ValueError(f"calibrated shot {key}: {name} {a[name]} differs from {b[name]} (stated HJC or "
+                                 f"calibration): the depths would not compare one change")
+        paper = refs[f"table3.sim.{int(key[1])}.{key[0]}"].si
+        rows.append({"nose": key[0], "velocity_ms": key[1], "elements_across_radius": cal["elements_across_radius"],
+                     "pilot_hole": shot["target"]["pilot_hole"], "strength_scale": shot["strength_scale"],
+                     "depth_stated_hjc_m": base["depth_m"], "depth_calibrated_m": shot["depth_m"],
+                     "paper_depth_m": paper, "stated_over_paper": base["depth_m"] / paper,
+                     "calibrated_over_paper": shot["depth_m"] / paper, "status": shot["status"],
+                     "energy_error_max": shot["energy_error_max"]})
+    write_csv(pd.DataFrame(rows).sort_values(["velocity_ms", "nose"], ignore_index=True), outputs.csv)
+    row = calibration_row(cal, "strength_scale", "results/fe/" + "/".join(str(inputs.cal).split("/")[-3:]))
+    write_csv(pd.DataFrame([{**row, "elements_across_radius": cal["elements_across_radius"],
+                             "pilot_hole": cal["data"]["target"]["pilot_hole"], "converged": cal["converged"],
+                             "trials": len(cal["runs"])}]), outputs.calibration)
 
 
 @task

@@ -1,4 +1,5 @@
-"""The FE level's moving window against the whole domain, on DO1.
+"""The FE level's moving window against the whole domain, on DO1 (eroding target) and on shots of the erosion-free
+target.
 
 The level's shots compute only the rows from ``fe.window_tail`` behind the
 projectile's tail to ``fe.window_ahead`` ahead of its tip. This study runs the
@@ -31,6 +32,18 @@ DOMAINS = ("window", "whole")
 @task
 def fe_window_study(inputs, outputs, params):
     """DO1 with the moving window and with the whole domain, ``members`` realisations each."""
+    window_study(inputs, outputs, params, "double_ogive")
+
+
+@task
+def fe_erosion_free_window(inputs, outputs, params):
+    """One shot of an erosion-free scene (``params.nose`` at ``params.velocity``) with the moving window and with the
+    whole domain, ``members`` realisations each."""
+    window_study(inputs, outputs, params, params.nose)
+
+
+def window_study(inputs, outputs, params, nose):
+    """The scene's shot of ``nose`` at ``params.velocity`` with the moving window and with the whole domain."""
     members, step = int(params.members), float(params.velocity_step)
     if members < 2:
         raise ValueError(f"fe_window.members = {members}; allowed: >= 2 (a mean and its spread)")
@@ -42,9 +55,9 @@ def fe_window_study(inputs, outputs, params):
     rows, wall = [], []
     for domain in DOMAINS:
         cfg = params.cfg if domain == "window" else {**params.cfg, "window_ahead": None, "window_tail": None}
-        shot = SimpleNamespace(cfg=cfg, hjc=params.hjc, profile=params.profile, nose="double_ogive", velocity=params.velocity)
+        shot = SimpleNamespace(cfg=cfg, hjc=params.hjc, profile=params.profile, nose=nose, velocity=params.velocity)
         for k in range(members):
-            print(f"window study: {domain} domain, realisation {k + 1} of {members}", flush=True)
+            print(f"window study, {nose} at {params.velocity} m/s: {domain} domain, realisation {k + 1} of {members}", flush=True)
             factor = 1.0 + k * step
             summary, r, _, _ = scene_shot(inputs, shot, factor)
             rows.append({"domain": domain, "member": k, "striking_velocity_ms": summary["velocity"] * factor,

@@ -1,0 +1,150 @@
+"""The erosion-free target's DO1 strength-scale calibration: the secant finds a known scale, a scene takes the scale
+only from a record of its own mesh and target, and the calibrated depths table compares one change."""
+import json
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+import yaml
+
+from penetration import fe_level, reference
+from penetration.fe.shot import RunSpec
+from penetration.geometry import Ogive
+from penetration.pipeline import fe_calibrated_scenes
+from penetration.scenes import read_scene, resolve
+
+ROOT = Path(__file__).resolve().parents[1]
+SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
+CONFIG = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
+REFS = reference.load_reference(ROOT / CONFIG["reference"])
+
+
+def fake_depths(monkeypatch, calls):
+    """run_shot replaced by a depth that falls with the strength scale k as a power law with a 0.3 % wobble,
+    5.1 (0.55 / k)^0.7: the root is k = 0.55 (the material of each trial is read from its spec)."""
+    import math
+
+    def run_shot(spec, **kw):
+        k = spec.material.strength_scale
+        calls.append(k)
+        depth = 5.1 * (0.55 / k) ** 0.7 * (1 + 0.003 * math.sin(40 * k))
+        return SimpleNamespace(depth=depth, wall_time=1.0, status="rest", peak_deceleration=1.0, elements=10, steps=10,
+                               summary=lambda: {"energy_error_max": 0.0})
+
+    monkeypatch.setattr(fe_level, "run_shot", run_shot)
+
+
+def test_the_strength_scale_secant_finds_a_known_scale_and_refuses_a_bracket_that_misses(monkeypatch):
+    from penetration import concrete
+    calls = []
+    fake_depths(monkeypatch, calls)
+    material = lambda k: concrete.configured(REFS, CONFIG["concrete"], strength_scale=k)
+    spec = RunSpec(None, 81.1, 835.0, material(1.0))
+    fit = fe_level.calibrate_strength_scale(spec, 5.1, material, bracket=(0.2, 2.0), tol_m=0.02)
+    assert fit["converged"] and abs(fit["residual_m"]) <= 0.02
+    assert fit["strength_scale"] == pytest.approx(0.55, rel=0.02)
+    assert calls[:2] == pytest.approx([0.2, 2.0]) and len(calls) <= 10
+    assert [r["strength_scale"] for r in fit["runs"]] == pytest.approx(calls)
+    with pytest.raises(ValueError, match="no strength_scale in"):
+        fe_level.calibrate_strength_scale(spec, 5.1, material, bracket=(1.0, 2.0))
+
+
+def _scene(name):
+    data = read_scene(ROOT / f"workflow/scenes/fe/{name}.yaml", SCHEMA, ("fe",))
+    return resolve(name, data, {"table4_do1": Ogive(4.5, 0.07)}, {}, {})
+
+
+def _fe_cfg(h):
+    """The fe config slice of a profile of element size h (as the Snakefile's fe_cfg joins one)."""
+    return {**CONFIG["fe"], "profiles": {f"free{round(0.07 / h * 100)}": {"element_size": h, "mesh_study_sizes": [h]}}}
+
+
+def _record(h, hole=0.125, formulation="erosion_free", scale=0.6):
+    return {"strength_scale": scale, "element_size": h,
+            "data": {"target": {"formulation": formulation, "pilot_hole": hole}}}
+
+
+def test_a_scene_takes_the_strength_scale_only_from_a_record_of_its_own_mesh_and_target():
+    sc = _scene("table3_erosion_free_calibrated")
+    h = 0.07 / 16.0
+    args = (sc, "crh3", 500.0, REFS, CONFIG["concrete"], _fe_cfg(h), "free1600", 2.0)
+    spec, notes = fe_level.scene_spec(*args, _record(h))
+    assert spec.material.strength_scale == 0.6 and notes["strength_scale"] == 0.6
+    assert spec.target.formulation == "erosion_free" and spec.target.pilot_hole == 0.125
+    assert spec.settings.controls.erosion == "none"
+    # the stated scene: the same material but for the scale
+    stated, notes0 = fe_level.scene_spec(_scene("table3_erosion_free_hole125"), *args[1:])
+    assert stated.material.strength_scale == 1.0 and notes0["strength_scale_provenance"].startswith("none")
+    assert stated.material == spec.material.__class__(**{**vars(spec.material), "strength_scale": 1.0})
+    with pytest.raises(ValueError, match="needs the DO1 calibration"):
+        fe_level.scene_spec(*args)
+    with pytest.raises(ValueError, match="element size"):
+        fe_level.scene_spec(*args, _record(0.07 / 12.8))
+    with pytest.raises(ValueError, match="pilot_hole"):
+        fe_level.scene_spec(*args, _record(h, hole=0.25))
+
+
+def test_an_eroding_scene_cannot_take_a_strength_scale_calibration(tmp_path):
+    data = read_scene(ROOT / "workflow/scenes/fe/table3_erosion_free_calibrated.yaml", SCHEMA, ("fe",))
+    data["fe"] = {"target": "semi_infinite", "strength_scale": "calibrated"}
+    sc = resolve("eroding", data, {"table4_do1": Ogive(4.5, 0.07)}, {}, {})
+    with pytest.raises(ValueError, match="erosion_free target only"):
+        fe_level.scene_spec(sc, "crh3", 500.0, REFS, CONFIG["concrete"], _fe_cfg(0.00875), "free800", 2.0,
+                            _record(0.00875))
+
+
+def test_the_shipped_calibrated_scene_is_found_and_differs_from_its_base_by_the_scale_only():
+    folder = ROOT / "workflow/scenes/fe"
+    assert fe_calibrated_scenes(folder, SCHEMA, "strength_scale") == {CONFIG["fe_erosion_free"]["calibration"]["scene"]}
+    assert "table3_erosion_free_calibrated" not in fe_calibrated_scenes(folder, SCHEMA)
+    a = read_scene(folder / "table3_erosion_free_calibrated.yaml", SCHEMA, ("fe",))
+    b = read_scene(folder / "table3_erosion_free_hole125.yaml", SCHEMA, ("fe",))
+    a["fe"].pop("strength_scale")
+    assert {k: v for k, v in a.items() if k != "description"} == {k: v for k, v in b.items() if k != "description"}
+
+
+def _shot(nose, v, depth, hole=0.125, h=0.004375, scale=None):
+    s = {"nose": nose, "velocity": v, "depth_m": depth, "element_size": h, "status": "rest", "energy_error_max": 1e-4,
+         "target": {"formulation": "erosion_free", "pilot_hole": hole}}
+    if scale is not None:
+        s["strength_scale"] = scale
+    return s
+
+
+def _run_table(tmp_path, shots, stated):
+    from penetration.tasks.fe_erosion_free import fe_erosion_free_calibrated
+    cal = {"calibration": "fe_strength_do1", "fitted_quantity": "HJC strength_scale", "strength_scale": 0.6,
+           "element_size": 0.004375, "elements_across_radius": 16.0, "residual_m": 0.01, "relative_residual": 0.002,
+           "converged": True, "runs": [{}, {}, {}],
+           "data": {"measured_depth": 5.1, "vs": 835.0, "mass": 81.1, "nose": "table4_do1",
+                    "target": {"formulation": "erosion_free", "pilot_hole": 0.125}}}
+    paths = {}
+    for name, items in (("cal", [cal]), ("shots", shots), ("stated", stated)):
+        paths[name] = []
+        for i, item in enumerate(items):
+            p = tmp_path / f"{name}{i}.json"
+            p.write_text(json.dumps(item))
+            paths[name].append(str(p))
+    inputs = SimpleNamespace(reference=str(ROOT / CONFIG["reference"]), cal=paths["cal"][0], shots=paths["shots"],
+                             stated=paths["stated"])
+    outputs = SimpleNamespace(csv=str(tmp_path / "calibrated.csv"), calibration=str(tmp_path / "calibration.csv"))
+    fe_erosion_free_calibrated(inputs, outputs, SimpleNamespace())
+    return outputs
+
+
+def test_the_calibrated_depths_table_sets_each_shot_beside_its_stated_twin_and_the_paper(tmp_path):
+    import pandas as pd
+    out = _run_table(tmp_path, [_shot("crh3", 500.0, 2.0, scale=0.6), _shot("crh3", 1200.0, 7.0, scale=0.6)],
+                     [_shot("crh3", 1200.0, 5.0), _shot("crh3", 500.0, 1.4)])
+    t = pd.read_csv(out.csv)
+    assert list(t.velocity_ms) == [500.0, 1200.0]
+    assert list(t.depth_stated_hjc_m) == [1.4, 5.0] and list(t.depth_calibrated_m) == [2.0, 7.0]
+    paper = [REFS["table3.sim.500.crh3"].si, REFS["table3.sim.1200.crh3"].si]
+    assert list(t.paper_depth_m) == paper
+    assert t.calibrated_over_paper.tolist() == pytest.approx([2.0 / paper[0], 7.0 / paper[1]], rel=1e-15)
+    c = pd.read_csv(out.calibration)
+    assert c.parameter[0] == "strength_scale" and c.value[0] == 0.6 and c.residual_m[0] == 0.01 and c.trials[0] == 3
+    with pytest.raises(ValueError, match="pilot_hole"):
+        _run_table(tmp_path, [_shot("crh3", 500.0, 2.0, scale=0.6)], [_shot("crh3", 500.0, 1.4, hole=0.25)])
+    with pytest.raises(ValueError, match="no shot with the stated HJC"):
+        _run_table(tmp_path, [_shot("crh3", 500.0, 2.0, scale=0.6)], [_shot("crh45", 500.0, 1.4)])
