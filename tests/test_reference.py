@@ -159,3 +159,23 @@ def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_b
     assert inc.paper == refs["table3.inc_equiv.800.double_ogive"].value and inc.ours == pytest.approx(100 * (ratio - 1))
     assert inc.status == status and rank.status == ranking
     assert "eroding FE at zero size 1.147" in inc.case and "cavity level 1.031" in inc.case
+
+
+@pytest.mark.parametrize("depth, band, status", [(7.9, 0.05, "reproduced"), (5.3, 0.1, "deviates"),
+                                                 (7.3, 0.6, "undecided")])
+def test_erosion_free_depth_rows_judge_the_stated_depth_on_its_band_and_call_a_calibrated_one_so(depth, band, status):
+    """CRH 3 at 1200 m/s (the paper's simulation: 7.860 m, 7.5 %): the stated HJC's depth at zero size and hole with
+    its band against the tolerance (reproduced only when the whole band lies within it); the DO1-calibrated depth of
+    one mesh is compared by value and, within the tolerance, agrees after calibration, never reproduces."""
+    from penetration.diff import erosion_free_depth_rows
+    refs = load_reference(REF)
+    ref = refs["table3.sim.1200.crh3"]
+    limit = {"quantity": "depth_m", "case": "crh3", "velocity_ms": 1200.0, "at_zero_hole": depth, "uncertainty": band}
+    ratio = {**limit, "quantity": "depth_ratio", "case": "DO/CRH 4.5"}
+    cal = {"nose": "crh3", "velocity_ms": 1200.0, "depth_calibrated_m": depth, "strength_scale": 0.55,
+           "elements_across_radius": 16.0, "pilot_hole": 0.125}
+    stated, calibrated = erosion_free_depth_rows(refs, [limit, ratio], [cal])
+    assert stated.paper == ref.value == 7.86 and stated.ours == depth and stated.status == status
+    want = "agrees-after-calibration" if abs(depth - ref.value) <= ref.tol * ref.value else "deviates"
+    assert calibrated.ours == depth and calibrated.status == want and "calibrated on DO1" in calibrated.quantity
+    assert "strength scale 0.550" in calibrated.case

@@ -512,6 +512,35 @@ def contrast_rows(refs, contrasts):
     return rows
 
 
+def erosion_free_depth_rows(refs, limits, calibrated):
+    """Table 3's depths on the erosion-free FE target (a study): with Table 1's HJC as stated, each depth at zero
+    element size and zero pilot hole (rows of figures/fe/erosion_free/convergence_holes.csv) judged on the band of
+    its uncertainty against the paper's tolerance (nothing calibrated: an agreement is a reproduction); and with one
+    strength scale calibrated on DO1 at the finest mesh and smallest hole (rows of
+    figures/fe/erosion_free/calibrated.csv; agreement there is after calibration)."""
+    rows = []
+    for r in limits:
+        if r["quantity"] != "depth_m":
+            continue
+        v, nose = int(r["velocity_ms"]), r["case"]
+        ref = refs[f"table3.sim.{v}.{nose}"]
+        ours, band = float(r["at_zero_hole"]), float(r["uncertainty"])
+        case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: {ours:.3f} +- {band:.3f} m; "
+                f"Table 1 HJC as stated; a study)")
+        rows.append(Row(ref.item, ref.quantity + " on the erosion-free target", case, ref.value, ours,
+                        _rel(ref.value, ours), ref.tol, interval_status(ref.value, ours - band, ours + band,
+                                                                        ref.tol * abs(ref.value), False)))
+    for r in calibrated:
+        v, nose = int(r["velocity_ms"]), r["nose"]
+        ref = refs[f"table3.sim.{v}.{nose}"]
+        case = (f"{ref.case} (erosion-free FE; HJC strength scale {float(r['strength_scale']):.3f} calibrated on DO1 at "
+                f"{float(r['elements_across_radius']):g} elements across and pilot hole {float(r['pilot_hole']):g}; "
+                f"one mesh; a study)")
+        rows.append(compare(ref, float(r["depth_calibrated_m"]), case, ref.quantity + " on the erosion-free target "
+                            "calibrated on DO1", calibrated=True))
+    return rows
+
+
 def erosion_free_rows(refs, limits, eroding, contrast_table):
     """The verdict on the paper's nose contrasts from the erosion-free FE target (a study: Table 3's rows on meshes
     refined by a constant ratio at pilot holes halved in turn, each contrast extrapolated to zero element size and
