@@ -85,15 +85,21 @@ def area2(r, z):
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
+def corner_jacobians(r, z):
+    """Twice the areas of the quad's four corner triangles (corners counter-clockwise): all positive for a convex
+    quad, one <= 0 once a corner folds."""
+    r1, r2, r3, r4 = r
+    z1, z2, z3, z4 = z
+    return ((r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1), (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2),
+            (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3), (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4))
+
+
+@njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
 def sound_shape(r, z, rh, zh):
     """Whether the quad is valid now (corners r, z) and at the half step (rh, zh): positive area at both, every
     corner Jacobian positive now, off the axis (a positive radius sum) at both."""
     r1, r2, r3, r4 = r
-    z1, z2, z3, z4 = z
-    c1 = (r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1)
-    c2 = (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2)
-    c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
-    c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
+    c1, c2, c3, c4 = corner_jacobians(r, z)
     return ((area2(rh, zh) > 0.0) & (area2(r, z) > 0.0) & (min(min(c1, c2), min(c3, c4)) > 0.0)
             & (r1 + r2 + r3 + r4 > 0.0) & (rh[0] + rh[1] + rh[2] + rh[3] > 0.0))
 

@@ -28,6 +28,23 @@ TRAVEL = 14.0          # shank radii driven
 STEADY_FROM = 8.0      # shank radii of depth after which the force is steady (the nose, 3.3 a long, well buried)
 
 
+def driven_ogive(across: float, hole: float, v: float, material: HJC | None = None, outputs: int = 200,
+                 crater_depth: float | None = 4 * RADIUS) -> tuple[Model, Projectile]:
+    """The model and projectile of the driven check: the CRH 3 ogive (RADIUS) as a 1e6 kg body at ``v`` (its speed
+    stays within 1e-4 of v), the erosion-free target with ``across`` elements across the shank radius and a pilot
+    hole of ``hole`` shank radii, to TRAVEL radii of travel with ``outputs`` output samples; ``crater_depth``: the
+    guard's crater-debris depth (None: a lost shape anywhere below the face stops the run)."""
+    a = RADIUS
+    zeta, rho = body_outline(Ogive(PSI, a), 20 * a)
+    end = TRAVEL * a / v
+    g = build(MeshSpec(a / across, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
+    m = Model(g, material or HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False,
+                                            rezone_radius=8 * a, eject_height=a, crater_depth=crater_depth,
+                                            lateral="non_reflecting", bottom="non_reflecting", end_time=end,
+                                            output_interval=end / outputs))
+    return m, Projectile(zeta, rho, 1e6, 0.0, v)
+
+
 def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: HJC | None = None) -> dict:
     """The steady axial force over pi a^2 (Pa, compression positive: mean and standard deviation over the output
     samples beyond STEADY_FROM radii of depth) of the ogive driven at ``v`` (m/s) into the erosion-free target with
@@ -40,15 +57,8 @@ def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: H
     if not (math.isfinite(v) and 0.0 < v <= 200.0):
         raise ValueError(f"quasi-static force: v = {v} m/s; allowed: 0 < v <= 200 m/s (a low, driven speed)")
     a = RADIUS
-    zeta, rho = body_outline(Ogive(PSI, a), 20 * a)
-    end = TRAVEL * a / v
     t0 = time.perf_counter()
-    g = build(MeshSpec(a / across, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
-    m = Model(g, material or HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False,
-                                            rezone_radius=8 * a, eject_height=a, crater_depth=4 * a,
-                                            lateral="non_reflecting",
-                                            bottom="non_reflecting", end_time=end, output_interval=end / 200))
-    p = Projectile(zeta, rho, 1e6, 0.0, v)      # 1e6 kg: the speed stays within 1e-4 of v
+    m, p = driven_ogive(across, hole, v, material)
     base = {"elements_across": float(across), "pilot_hole": float(hole), "velocity_ms": float(v)}
     try:
         res = run(m, p)

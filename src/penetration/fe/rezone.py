@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .element import area2, length as element_length, moment
+from .element import area2, corner_jacobians, length as element_length, moment
 from .state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, P, QV, SRR, SRZ, STT, SZZ, TWO_PI,
                     V0, VR, VZ)
 
@@ -60,11 +60,7 @@ def _corners(X, nr, e):
 @njit(cache=True)
 def _quality(X, nr, e):
     """Smallest corner Jacobian over their mean (1 for a parallelogram, <= 0 when inverted)."""
-    (r1, r2, r3, r4), (z1, z2, z3, z4) = _corners(X, nr, e)
-    c1 = (r2 - r1) * (z4 - z1) - (z2 - z1) * (r4 - r1)
-    c2 = (r3 - r2) * (z1 - z2) - (z3 - z2) * (r1 - r2)
-    c3 = (r4 - r3) * (z2 - z3) - (z4 - z3) * (r2 - r3)
-    c4 = (r1 - r4) * (z3 - z4) - (z1 - z4) * (r3 - r4)
+    c1, c2, c3, c4 = corner_jacobians(*_corners(X, nr, e))
     s = c1 + c2 + c3 + c4
     return 4.0 * min(min(c1, c2), min(c3, c4)) / s if s > 0.0 else -1.0
 

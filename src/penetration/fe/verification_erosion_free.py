@@ -4,11 +4,8 @@ on Blake's cavity, rezoned: ``verification_mechanics``.)"""
 from __future__ import annotations
 
 from ..checks import Check, below as _below
-from ..geometry import Ogive
 from ..hjc import HJC
-from .contact import Projectile
-from .mesh import MeshSpec, body_outline, build
-from .model import Controls, Model
+from .quasi_static import driven_ogive
 from .solver import run
 from .verification import problem
 
@@ -19,16 +16,7 @@ def erosion_free_audit(v=40.0, across=4, hole=0.25):
     1/4 of the radius, 4 elements across it) to 14 radii: the drive holds the speed, and the audit closes with no
     eroded term (the eroded mass and energy exactly 0; the remap's and the ejecta's terms booked)."""
     name = f"erosion-free penetration audit (CRH 3, a = 20 mm, {v:g} m/s driven, hole {hole:g} a)"
-    a = 0.02
-    nose = Ogive(3.0, a)
-    h = a / across
-    zeta, rho = body_outline(nose, 20 * a)
-    end = 14 * a / v
-    g = build(MeshSpec(h, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
-    m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, rezone_radius=8 * a,
-                                 eject_height=a, lateral="non_reflecting", bottom="non_reflecting", end_time=end,
-                                 output_interval=end / 50))
-    p = Projectile(zeta, rho, 1e6, 0.0, v)        # 1e6 kg: the speed stays within 1e-4 of v
+    m, p = driven_ogive(across, hole, v, HJC(), outputs=50, crater_depth=None)   # the quasi-static check's set-up
     res = run(m, p)
     audit = res.audit[-1]
     # the audit's error over the work done on the target (the 1e6 kg projectile's energy would hide it)
