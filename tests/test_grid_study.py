@@ -27,7 +27,8 @@ def shots(**law):
                                 "target": {"formulation": "erosion_free", "pilot_hole": hole},
                                 "depth_m": depth(nose, v, n, hole, **law), "wall_time_s": n ** 3, "steps": 1000 * n,
                                 "elements": 100 * n * n, "energy_error_max": 1e-4, "eroded_mass_kg": 0.0,
-                                "ejected_mass_kg": 1.0, "remap_energy_j": 0.0, "status": "rest"})
+                                "ejected_mass_kg": 1.0, "crater_debris_mass_kg": 0.0, "remap_energy_j": 0.0,
+                                "status": "rest"})
     return out
 
 
@@ -50,6 +51,17 @@ def test_the_study_recovers_the_limits_orders_and_goals_of_an_exact_error_law():
     assert len(ratio) == 2 and all(abs(r.at_zero_hole - 3.3 / 3.1) < 5e-3 for r in ratio.itertuples())
     cost = grid_study.cost_rows(s)
     assert list(cost.elements_across) == sorted(ACROSS.values()) and (cost.shots == 18).all()
+    assert (cost.formulation == "erosion_free").all()
+    assert list(cost.wall_time_mean_s) == pytest.approx([n ** 3 for n in sorted(ACROSS.values())], rel=1e-12)
+    # the eroding level's same six shots at one mesh: a row of their own; a missing shot is refused
+    eroding = [{"profile": "full", "element_size": 0.00875, "nose": nose, "velocity": v, "wall_time_s": 10.0 + v / 100,
+                "steps": 1, "elements": 1} for nose in LIMIT for v in (500.0, 1200.0)]
+    both = grid_study.cost_rows(s, eroding, 8)
+    row = both[both.formulation == "eroding"].iloc[0]
+    assert len(both) == len(cost) + 1 and row.elements_across == 8 and row.shots == 6
+    assert row.wall_time_mean_s == pytest.approx(10.0 + 8.5, rel=1e-12)
+    with pytest.raises(ValueError, match="missing"):
+        grid_study.cost_rows(s, eroding[1:], 8)
 
 
 def test_the_goals_fail_when_the_fine_mesh_is_too_far_from_the_limit():

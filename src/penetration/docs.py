@@ -202,7 +202,9 @@ def erosion_free(read) -> str:
     base = "figures/fe/erosion_free/"
     holes = [r for r in _rows(read, base + "convergence_holes.csv") if r["quantity"] == "depth_ratio"]
     conv = _rows(read, base + "convergence.csv")
-    cost = _rows(read, "figures/timing/fe_erosion_free_convergence.csv")
+    timing = _rows(read, "figures/timing/fe_erosion_free_convergence.csv")
+    cost = [r for r in timing if r["formulation"] == "erosion_free"]
+    eroding = [r for r in timing if r["formulation"] == "eroding"]
     lines = ["| contrast | velocity (m/s) | paper's simulation | erosion-free at zero size and hole | meshes | holes | "
              "ranking (ratio > 1) |", "|---|---|---|---|---|---|---|"]
     for r in holes:
@@ -227,8 +229,10 @@ def erosion_free(read) -> str:
               f"by {met['depth_m']} of {total['depth_m']} depths and {met['depth_ratio']} of {total['depth_ratio']} "
               f"contrasts; statuses {', '.join(f'{k} {v}' for k, v in sorted(status.items()))} "
               f"(`{base}convergence.csv`, `{base}convergence_holes.csv`). {shots} shots on meshes of "
-              f"{across[0]:g}-{across[-1]:g} elements across, {hours:.1f} h of job time; mean per shot: {per} "
-              "(`figures/timing/fe_erosion_free_convergence.csv`)."]
+              f"{across[0]:g}-{across[-1]:g} elements across, {hours:.1f} h of job time; mean per shot: {per}"
+              + "".join(f"; the eroding level's same {r['shots']} shots at {float(r['elements_across']):g} across "
+                        f"{_span(r['wall_time_mean_s'])}" for r in eroding)
+              + " (`figures/timing/fe_erosion_free_convergence.csv`)."]
     return "\n".join(lines) + "\n"
 
 

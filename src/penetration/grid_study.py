@@ -21,7 +21,7 @@ from .fe_studies import CONTRASTS
 from .mesh_convergence import MONOTONE, grid_refinement
 
 SHOT_COLUMNS = ("depth_m", "wall_time_s", "steps", "elements", "energy_error_max", "eroded_mass_kg",
-                "ejected_mass_kg", "remap_energy_j", "status")
+                "ejected_mass_kg", "crater_debris_mass_kg", "remap_energy_j", "status")
 
 
 def shot_rows(shots, across) -> pd.DataFrame:
@@ -99,12 +99,32 @@ def _hole_convergence(shots, paper_depth, goal_depth, goal_contrast):
     return pd.DataFrame(rows)
 
 
-def cost_rows(shots: pd.DataFrame) -> pd.DataFrame:
-    """Per mesh: shots, wall time per shot (mean, max) and in all, steps and elements per shot (mean)."""
-    g = shots.groupby(["profile", "elements_across", "element_size_m"], as_index=False)
-    return g.agg(shots=("wall_time_s", "size"), wall_time_mean_s=("wall_time_s", "mean"),
-                 wall_time_max_s=("wall_time_s", "max"), wall_time_sum_s=("wall_time_s", "sum"),
-                 steps_mean=("steps", "mean"), elements_mean=("elements", "mean")).sort_values("elements_across")
+def cost_rows(shots: pd.DataFrame, eroding=None, eroding_across=None) -> pd.DataFrame:
+    """Per mesh: shots, wall time per shot (mean, max) and in all, steps and elements per shot (mean), formulation
+    erosion_free; ``eroding``: the same noses and velocities on the eroding target at one mesh of ``eroding_across``
+    elements across (their summaries, tasks.fe), a row of their own (formulation eroding) to set the per-shot time
+    against."""
+    def per_mesh(frame, formulation):
+        g = frame.groupby(["profile", "elements_across", "element_size_m"], as_index=False)
+        out = g.agg(shots=("wall_time_s", "size"), wall_time_mean_s=("wall_time_s", "mean"),
+                    wall_time_max_s=("wall_time_s", "max"), wall_time_sum_s=("wall_time_s", "sum"),
+                    steps_mean=("steps", "mean"), elements_mean=("elements", "mean"))
+        out.insert(0, "formulation", formulation)
+        return out
+
+    parts = [per_mesh(shots, "erosion_free")]
+    if eroding:
+        pairs = set(zip(shots.nose, shots.velocity_ms))
+        rows = [{"profile": e["profile"], "elements_across": float(eroding_across), "element_size_m": e["element_size"],
+                 "nose": e["nose"], "velocity_ms": float(e["velocity"]), **{k: e[k] for k in ("wall_time_s", "steps", "elements")}}
+                for e in eroding]
+        missing = pairs - {(r["nose"], r["velocity_ms"]) for r in rows}
+        if missing or len(rows) != len(pairs):
+            raise ValueError(f"the eroding shots must be the study's noses and velocities once each: missing "
+                             f"{sorted(missing)}, {len(rows)} shots for {len(pairs)}")
+        parts.append(per_mesh(pd.DataFrame(rows), "eroding"))
+    return pd.concat(parts, ignore_index=True).sort_values(["formulation", "elements_across"], ascending=[False, True],
+                                                           ignore_index=True)
 
 
 def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:

@@ -281,11 +281,14 @@ use rule fe_fig12 as fe_erosion_free_convergence with:
     input: **task("tasks.fe_erosion_free"), reference=config["reference"],
            shots=[path.format(profile=p) for scene in config["fe_erosion_free"]["scenes"] for p in FREE_PROFILES
                   for path in fe_shots(scene)],
+           # the eroding level's Table 3 shots at its default mesh: the per-shot time the study's is set against
+           eroding=[path.format(profile="full") for path in fe_shots("table3")],
     output: png=report("figures/fe/erosion_free/convergence.png", caption="../report/captions/fe_erosion_free_convergence.rst", category="Finite-element level"),
             csv="figures/fe/erosion_free/convergence.csv", depths="figures/fe/erosion_free/convergence_shots.csv",
             holes="figures/fe/erosion_free/convergence_holes.csv", cost="figures/timing/fe_erosion_free_convergence.csv",
     params: dpi=config["figures"]["dpi"], across=config["fe_erosion_free"]["profiles"],
             goal_depth=config["fe_erosion_free"]["gci_goal_depth"], goal_contrast=config["fe_erosion_free"]["gci_goal_contrast"],
+            eroding_across=config["fe"]["profiles"]["full"]["elements_across"],
     benchmark: "results/benchmarks/fe_erosion_free_convergence.tsv"
     log: "results/logs/fe_erosion_free_convergence.log",
 

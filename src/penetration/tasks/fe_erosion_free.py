@@ -27,7 +27,8 @@ def fe_erosion_free_convergence(inputs, outputs, params):
     write_csv(conv, outputs.csv)
     holes = grid_study.hole_rows(conv, params.goal_depth, params.goal_contrast)
     write_csv(holes, outputs.holes)
-    write_csv(grid_study.cost_rows(shots), outputs.cost)
+    eroding = [s for s in map(load_json, inputs.eroding) if float(s["velocity"]) in set(shots.velocity_ms)]
+    write_csv(grid_study.cost_rows(shots, eroding, params.eroding_across), outputs.cost)
     grid_convergence_figure(conv, holes, outputs.png, params.dpi)
 
 
