@@ -236,6 +236,40 @@ def erosion_free(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def erosion_free_depths(read) -> str:
+    """The erosion-free target's absolute depths: with Table 1's HJC as stated at zero element size and hole (a
+    study), and with one strength scale calibrated on DO1 at one mesh (a calibration), against the paper's Table 3."""
+    base = "figures/fe/erosion_free/"
+    holes = [r for r in _rows(read, base + "convergence_holes.csv") if r["quantity"] == "depth_m"]
+    ratios = [float(r["at_zero_hole"]) / float(r["paper_simulated"]) for r in holes]
+    cal = _rows(read, base + "calibration.csv")[0]
+    depths = _rows(read, base + "calibrated.csv")
+    over = [float(r["calibrated_over_paper"]) for r in depths]
+    return (f"With Table 1's HJC as stated the erosion-free depths at zero element size and hole are "
+            f"{min(ratios):.2f}-{max(ratios):.2f} of the paper's simulated ones ({len(holes)} shots of Table 3; "
+            f"`{base}convergence_holes.csv`). One strength scale calibrated on DO1 (a calibration: "
+            f"{float(cal['value']):.3f} on the whole HJC strength surface, residual {float(cal['residual_m']) * 100:+.1f} cm "
+            f"on the measured {float(cal['measured_depth_m']):g} m, at {float(cal['elements_across_radius']):g} elements "
+            f"across and hole {float(cal['pilot_hole']):g}) brings them to {min(over):.2f}-{max(over):.2f} of the paper's "
+            f"on that mesh (`{base}calibrated.csv`, `{base}calibration.csv`).\n")
+
+
+def erosion_free_window(read) -> str:
+    """The moving window on the erosion-free target: each shot's mean depth with the window against the whole
+    domain's, with the equivalence test's interval."""
+    import yaml
+    base = "figures/fe/erosion_free/"
+    parts = []
+    for shot in yaml.safe_load(read("workflow/config.yaml"))["fe_erosion_free"]["window"]["shots"]:
+        r = _rows(read, f"{base}window_{shot}_summary.csv")[0]
+        parts.append(f"{shot.replace('_', ' at ')} m/s {float(r['difference_pct']):+.2f} % ({100 * float(r['confidence']):.0f} % "
+                     f"interval {float(r['interval_low_pct']):+.2f} to {float(r['interval_high_pct']):+.2f} %, "
+                     f"{'within' if r['within_goal'] == 'True' else 'not within'} +-{float(r['goal_pct']):g} %; "
+                     f"{r['realisations']} realisations each)")
+    return ("The moving window against the whole domain on the erosion-free target (mean depths): " + "; ".join(parts)
+            + f" (`{base}window_*_summary.csv`).\n")
+
+
 def fe_speed(read) -> str:
     """Every run of workflow/benchmarks/fe_speed.py, per machine: time per element-step against the floor."""
     rows = _rows(read, "figures/timing/fe_speed.csv")
@@ -344,7 +378,7 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free}
+BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window}
 
 
 def render(text: str, read) -> str:
