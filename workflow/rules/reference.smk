@@ -24,7 +24,6 @@ rule diff:
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
     params: erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
             eroding=study_input("figures/fe/contrast_extrapolation.csv"),
-            erosion_free_calibrated=study_input("figures/fe/erosion_free/calibrated.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/diff.tsv"
