@@ -148,3 +148,32 @@ def test_the_calibrated_depths_table_sets_each_shot_beside_its_stated_twin_and_t
         _run_table(tmp_path, [_shot("crh3", 500.0, 2.0, scale=0.6)], [_shot("crh3", 500.0, 1.4, hole=0.25)])
     with pytest.raises(ValueError, match="no shot with the stated HJC"):
         _run_table(tmp_path, [_shot("crh3", 500.0, 2.0, scale=0.6)], [_shot("crh45", 500.0, 1.4)])
+
+
+@pytest.mark.parametrize("formulation", ["erosion_free", "eroding"])
+def test_a_stopped_erosion_free_shot_is_recorded_and_a_stopped_eroding_shot_fails(monkeypatch, tmp_path, formulation):
+    """The grid study's shot that stops is its result (status stopped, the diagnostic, no depth, empty tables); an
+    eroding shot that stops fails its job."""
+    import math
+    from penetration.fe.solver import Unstable
+    from penetration.tasks import fe as tasks_fe
+
+    def stop(inputs, params):
+        raise Unstable("element 7 (i 0, j 3) at r = 0.01 m, z = 0.3 m lost its shape inside the target at t = 3e-4 s")
+
+    fe = {"target": "semi_infinite", "formulation": formulation, "pilot_hole": 0.125}
+    monkeypatch.setattr(tasks_fe, "scene_shot", stop)
+    monkeypatch.setattr(tasks_fe, "scene_from_inputs", lambda inputs, levels: SimpleNamespace(name="s", mass=81.1, fe=fe))
+    outputs = SimpleNamespace(**{k: str(tmp_path / f"{k}.csv") for k in ("histories", "fields", "audit")},
+                              json=str(tmp_path / "shot.json"))
+    params = SimpleNamespace(cfg=_fe_cfg(0.07 / 16), profile="free1600", nose="crh3", velocity="1200")
+    if formulation == "eroding":
+        with pytest.raises(Unstable):
+            tasks_fe.fe_shot(SimpleNamespace(), outputs, params)
+        return
+    tasks_fe.fe_shot(SimpleNamespace(), outputs, params)
+    rec = json.loads(Path(outputs.json).read_text())
+    assert rec["status"] == "stopped" and "lost its shape" in rec["diagnostic"] and math.isnan(rec["depth_m"])
+    assert rec["target"]["pilot_hole"] == 0.125 and rec["element_size"] == 0.07 / 16 and rec["eroded_mass_kg"] == 0.0
+    import pandas as pd
+    assert len(pd.read_csv(outputs.histories)) == 0 and list(pd.read_csv(outputs.fields).columns)[:2] == ["r0", "z0"]

@@ -82,3 +82,36 @@ def test_the_study_refuses_meshes_not_refined_by_one_ratio_and_another_formulati
         grid_study.shot_rows(bad, ACROSS)
     with pytest.raises(ValueError, match="profile"):
         grid_study.shot_rows(shots(), {"m1": 8.192})
+
+
+def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():
+    """A shot that stopped (no depth) at the finest mesh: its depth and the contrasts it enters are refined on the
+    three coarser meshes (status stopped, their order and limit), the other noses' as before; stopped at the
+    second mesh, nothing is refined and the zero-hole value is not extrapolated."""
+    from penetration.grid_study import STOPPED
+    finest = max(ACROSS.values())
+    data = shots()
+    for s in data:
+        if (s["nose"], s["velocity"], s["target"]["pilot_hole"], ACROSS[s["profile"]]) == ("crh3", 500.0, HOLES[0], finest):
+            s.update(depth_m=float("nan"), status="stopped", diagnostic="element 1 lost its shape")
+    s = grid_study.shot_rows(data, ACROSS)
+    assert (s.diagnostic != "").sum() == 1
+    conv = grid_study.convergence_rows(s, {}, 0.01, 0.01)
+    at = conv[(conv.pilot_hole == HOLES[0]) & (conv.velocity_ms == 500.0)].set_index("case")
+    assert at.loc["crh3", "status"] == STOPPED and at.loc["crh3", "meshes_refined"] == 3 and not at.loc["crh3", "goal_met"]
+    assert at.loc["crh3", "observed_order"] == pytest.approx(2.0, rel=1e-6)   # the exact law on the coarser three
+    assert at.loc["crh3", "extrapolated"] == pytest.approx(LIMIT["crh3"] + 1.5 * HOLES[0] ** 2, rel=1e-9)
+    assert at.loc["CRH 4.5/CRH 3", "status"] == STOPPED and at.loc["DO/CRH 4.5", "status"] == MONOTONE
+    holes = grid_study.hole_rows(conv, 0.01, 0.01).set_index(["case", "velocity_ms"])
+    assert holes.loc[("crh3", 500.0), "meshes_stopped"] and not holes.loc[("crh3", 500.0), "goal_met"]
+    assert not holes.loc[("crh3", 1200.0), "meshes_stopped"]
+    # stopped on the second mesh: fewer than three meshes before it
+    second = sorted(ACROSS.values())[1]
+    for s_ in data:
+        if (s_["nose"], s_["velocity"], s_["target"]["pilot_hole"], ACROSS[s_["profile"]]) == ("crh3", 500.0, HOLES[0], second):
+            s_.update(depth_m=float("nan"), status="stopped")
+    conv = grid_study.convergence_rows(grid_study.shot_rows(data, ACROSS), {}, 0.01, 0.01)
+    row = conv[(conv.pilot_hole == HOLES[0]) & (conv.velocity_ms == 500.0) & (conv.case == "crh3")].iloc[0]
+    assert row.meshes_refined == 0 and np.isnan(row.extrapolated) and row.status == STOPPED
+    h = grid_study.hole_rows(conv, 0.01, 0.01).set_index(["case", "velocity_ms"]).loc[("crh3", 500.0)]
+    assert h.hole_status == STOPPED and np.isnan(h.at_zero_hole) and not h.goal_met

@@ -571,7 +571,8 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
             beside.append(f"cavity level {float(o['cavity_ratio']):.3f}; Eq 9 with the stated S "
                           f"{float(o['analytic_stated_S_ratio']):.3f}")
         case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: ratio {ratio:.3f} +- "
-                f"{band:.3f}; meshes {r['mesh_status_all_asymptotic'] and 'asymptotic' or 'not all asymptotic'}; "
+                f"{band:.3f}; meshes {r['mesh_status_all_asymptotic'] and 'asymptotic' or 'not all asymptotic'}"
+                f"{' (a shot stopped: refined on the meshes before it)' if r.get('meshes_stopped') else ''}; "
                 f"holes {r['hole_status']}; {'; '.join(beside)}; Table 1 HJC; a study)")
         rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value, ours,
                         _rel(ref.value, ours), 2.0 / abs(ref.value), interval_status(ref.value, lo, hi, 2.0, False)))

@@ -20,8 +20,10 @@ import pandas as pd
 from .fe_studies import CONTRASTS
 from .mesh_convergence import MONOTONE, grid_refinement
 
+STOPPED = "stopped"   # a shot of the sequence stopped (tasks.fe.fe_shot's record): refined up to it, no goal met
+
 SHOT_COLUMNS = ("depth_m", "wall_time_s", "steps", "elements", "energy_error_max", "eroded_mass_kg",
-                "ejected_mass_kg", "crater_debris_mass_kg", "remap_energy_j", "status")
+                "ejected_mass_kg", "crater_debris_mass_kg", "remap_energy_j", "status", "diagnostic")
 
 
 def shot_rows(shots, across) -> pd.DataFrame:
@@ -38,7 +40,7 @@ def shot_rows(shots, across) -> pd.DataFrame:
         rows.append({"pilot_hole": float(s["target"]["pilot_hole"]), "profile": s["profile"],
                      "elements_across": float(across[s["profile"]]),
                      "element_size_m": s["element_size"], "nose": s["nose"], "velocity_ms": float(s["velocity"]),
-                     **{k: s[k] for k in SHOT_COLUMNS}})
+                     **{k: s.get(k, "") if k == "diagnostic" else s[k] for k in SHOT_COLUMNS}})
     return pd.DataFrame(rows).sort_values(["pilot_hole", "velocity_ms", "nose", "elements_across"],
                                           ascending=[False, True, True, True], ignore_index=True)
 
@@ -53,15 +55,29 @@ def refinement_ratio(across):
 
 
 def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
-    g = grid_refinement(f, ratio)
-    gci = g.gci_fine_relative if relative else g.gci_fine
+    """One quantity's refinement. A mesh whose shot stopped (NaN) ends the sequence there: the meshes before it are
+    refined when they are three or more (status STOPPED, the numbers those meshes give, no goal met), else nothing
+    is."""
+    f = np.asarray(f, float)
+    upto = int(np.argmax(~np.isfinite(f))) if not np.all(np.isfinite(f)) else f.size
+    nan = float("nan")
+    if upto >= 3:
+        g = grid_refinement(f[:upto], ratio)
+        order, order_c, asym, ext, gci_f, gci_rel = (g.order, g.order_coarse, g.asymptotic_ratio, g.extrapolated,
+                                                     g.gci_fine, g.gci_fine_relative)
+        status = g.status if upto == f.size else STOPPED
+    else:
+        order = order_c = asym = ext = gci_f = gci_rel = nan
+        status = STOPPED
+    gci = gci_rel if relative else gci_f
     return {"quantity": quantity, "case": case, "velocity_ms": v,
             **{f"value_at_{n:g}_across": x for n, x in zip(across, f)},
-            "observed_order": g.order, "observed_order_coarse": g.order_coarse, "asymptotic_ratio": g.asymptotic_ratio,
-            "status": g.status, "extrapolated": g.extrapolated, "gci_fine": g.gci_fine,
-            "gci_fine_relative": g.gci_fine_relative, "gci_goal": goal, "gci_goal_kind": "relative" if relative else "absolute",
-            "goal_met": bool(g.status == MONOTONE and gci <= goal), "paper_simulated": paper,
-            "paper_inside_gci_band": bool(abs(paper - g.extrapolated) <= g.gci_fine) if np.isfinite(paper) else False}
+            "meshes_refined": upto if upto >= 3 else 0,
+            "observed_order": order, "observed_order_coarse": order_c, "asymptotic_ratio": asym,
+            "status": status, "extrapolated": ext, "gci_fine": gci_f,
+            "gci_fine_relative": gci_rel, "gci_goal": goal, "gci_goal_kind": "relative" if relative else "absolute",
+            "goal_met": bool(status == MONOTONE and gci <= goal), "paper_simulated": paper,
+            "paper_inside_gci_band": bool(abs(paper - ext) <= gci_f) if np.isfinite(paper) and np.isfinite(ext) else False}
 
 
 def convergence_rows(shots: pd.DataFrame, paper_depth: dict, goal_depth, goal_contrast) -> pd.DataFrame:
@@ -140,6 +156,18 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
     for (quantity, case, v), g in conv.groupby(["quantity", "case", "velocity_ms"], sort=False):
         g = g.set_index("pilot_hole").loc[holes]
         f = g.extrapolated.to_numpy()
+        if not np.all(np.isfinite(f)):   # a hole whose meshes stopped too early: nothing to extrapolate to zero hole
+            nan = float("nan")
+            rows.append({"quantity": quantity, "case": case, "velocity_ms": v,
+                         **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)},
+                         "hole_order": nan, "hole_order_coarse": nan, "hole_asymptotic_ratio": nan,
+                         "hole_status": STOPPED, "at_zero_hole": nan, "hole_gci": nan, "hole_gci_relative": nan,
+                         "mesh_gci_largest": float(g.gci_fine.max()),
+                         "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
+                         "mesh_status_all_asymptotic": False, "meshes_stopped": bool((g.status == STOPPED).any()),
+                         "gci_goal": goal_depth if quantity == "depth_m" else goal_contrast, "goal_met": False,
+                         "uncertainty": nan, "paper_simulated": float(g.paper_simulated.iloc[0]), "paper_inside": False})
+            continue
         r = grid_refinement(f, ratio)
         relative = quantity == "depth_m"
         gci = r.gci_fine_relative if relative else r.gci_fine
@@ -154,6 +182,7 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
                      "hole_gci_relative": r.gci_fine_relative, "mesh_gci_largest": float(g.gci_fine.max()),
                      "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
                      "mesh_status_all_asymptotic": bool((g.status == MONOTONE).all()),
+                     "meshes_stopped": bool((g.status == STOPPED).any()),
                      "gci_goal": goal, "goal_met": bool(r.status == MONOTONE and gci <= goal and mesh <= goal
                                                         and (g.status == MONOTONE).all()),
                      "uncertainty": band, "paper_simulated": paper,

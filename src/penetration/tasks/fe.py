@@ -20,6 +20,7 @@ from .. import concrete, reference
 from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
+from ..fe.solver import Unstable
 from ..fe_level import calibrate_failure_strain, calibrate_strength_scale, scene_spec
 from ..io import load_json, read_inference, task, write_csv, write_json
 from ..shots import expected_depth
@@ -146,8 +147,21 @@ def scene_shot(inputs, params, velocity_factor=1.0):
 
 @task
 def fe_shot(inputs, outputs, params):
-    """One nose at one velocity of an FE scene: depth, deceleration, audit, histories and the final fields."""
-    summary, r, spec, sc = scene_shot(inputs, params)
+    """One nose at one velocity of an FE scene: depth, deceleration, audit, histories and the final fields.
+
+    A shot of the erosion-free target that stops (an element losing its shape inside the target, or another
+    fe.solver.Unstable) is a result of the grid-convergence study it belongs to: its record says so (status
+    "stopped", the diagnostic, no depth) and its tables are empty. An eroding shot that stops fails the job."""
+    t0 = time.perf_counter()
+    try:
+        summary, r, spec, sc = scene_shot(inputs, params)
+    except Unstable as stop:
+        sc = scene_from_inputs(inputs, FE)
+        if sc.fe.get("formulation") != "erosion_free":
+            raise
+        print(f"stopped: {stop}", flush=True)
+        _stopped_shot(outputs, params, sc, stop, time.perf_counter() - t0)
+        return
     settings = spec.settings
     cfg = params.cfg
     h = r.histories
@@ -168,6 +182,23 @@ def fe_shot(inputs, outputs, params):
     write_csv(hist, outputs.histories)
     write_csv(fields[core & (fields.z0 < r.depth + 1.0)], outputs.fields)
     write_csv(pd.DataFrame(r.audit), outputs.audit)
+    write_json(summary, outputs.json)
+
+
+def _stopped_shot(outputs, params, sc, stop, wall):
+    """The record of an erosion-free shot that stopped: what it was, where and when it stopped, no depth."""
+    cfg = params.cfg
+    settings = Settings.from_config(cfg, params.profile)
+    nan = float("nan")
+    summary = {"scene": sc.name, "nose": params.nose, "velocity": float(params.velocity), "mass": sc.mass,
+               "profile": params.profile, "element_size": settings.element_size,
+               "target": dataclasses.asdict(TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])),
+               "status": "stopped", "diagnostic": str(stop), "depth_m": nan, "wall_time_s": wall, "steps": nan,
+               "elements": nan, "energy_error_max": nan, "eroded_mass_kg": 0.0, "ejected_mass_kg": nan,
+               "crater_debris_mass_kg": nan, "remap_energy_j": nan}
+    write_csv(pd.DataFrame(columns=["t", "depth", "velocity", "deceleration_raw", "deceleration"]), outputs.histories)
+    write_csv(pd.DataFrame(columns=["r0", "z0", "r", "z", "damage", "eps_p", "state"]), outputs.fields)
+    write_csv(pd.DataFrame(columns=["t"]), outputs.audit)
     write_json(summary, outputs.json)
 
 
