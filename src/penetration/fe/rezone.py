@@ -60,7 +60,8 @@ def _corners(X, nr, e):
 @njit(cache=True)
 def _quality(X, nr, e):
     """Smallest corner Jacobian over their mean (1 for a parallelogram, <= 0 when inverted)."""
-    c1, c2, c3, c4 = corner_jacobians(*_corners(X, nr, e))
+    r, z = _corners(X, nr, e)
+    c1, c2, c3, c4 = corner_jacobians(r, z)
     s = c1 + c2 + c3 + c4
     return 4.0 * min(min(c1, c2), min(c3, c4)) / s if s > 0.0 else -1.0
 
