@@ -115,3 +115,24 @@ def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():
     assert row.meshes_refined == 0 and np.isnan(row.extrapolated) and row.status == STOPPED
     h = grid_study.hole_rows(conv, 0.01, 0.01).set_index(["case", "velocity_ms"]).loc[("crh3", 500.0)]
     assert h.hole_status == STOPPED and np.isnan(h.at_zero_hole) and not h.goal_met
+
+
+def test_without_a_limit_the_hole_rows_give_the_range_of_every_value():
+    """Depths scattered about the law by +-2 % (no order, no limit): the zero-hole row finds no limit and gives the
+    range and median of every mesh's and hole's value instead."""
+    rng = np.random.default_rng(3)
+    data = shots()
+    for s in data:
+        s["depth_m"] *= 1 + 0.02 * rng.uniform(-1, 1)
+    conv = grid_study.convergence_rows(grid_study.shot_rows(data, ACROSS), {}, 0.01, 0.01)
+    holes = grid_study.hole_rows(conv, 0.01, 0.01)
+    for r in holes.itertuples():
+        g = conv[(conv.quantity == r.quantity) & (conv.case == r.case) & (conv.velocity_ms == r.velocity_ms)]
+        vals = g[[c for c in g.columns if c.startswith("value_at_")]].to_numpy().ravel()
+        assert r.values == 12 and r.values_min == vals.min() and r.values_max == vals.max()
+        assert r.values_median == pytest.approx(np.median(vals), rel=1e-15)
+        assert r.limit_found == bool(np.isfinite(r.uncertainty) and np.isfinite(r.at_zero_hole))
+    assert not holes.limit_found.all()          # the scatter defeats the refinement somewhere
+    clean = grid_study.hole_rows(grid_study.convergence_rows(grid_study.shot_rows(shots(), ACROSS), {}, 0.01, 0.01),
+                                 0.01, 0.01)
+    assert clean.limit_found.all()

@@ -179,3 +179,23 @@ def test_erosion_free_depth_rows_judge_the_stated_depth_on_its_band_and_call_a_c
     want = "agrees-after-calibration" if abs(depth - ref.value) <= ref.tol * ref.value else "deviates"
     assert calibrated.ours == depth and calibrated.status == want and "calibrated on DO1" in calibrated.quantity
     assert "strength scale 0.550" in calibrated.case
+
+
+def test_erosion_free_rows_without_a_limit_give_the_spread_and_decide_nothing():
+    """A zero-hole row with no limit (the study's refinement found none): the diff gives the median and range of
+    every mesh's and hole's value, never a verdict, for the increment, the ranking and the depth."""
+    from penetration.diff import erosion_free_depth_rows, erosion_free_rows
+    refs = load_reference(REF)
+    row = {"quantity": "depth_ratio", "case": "CRH 4.5/CRH 3", "velocity_ms": 1200.0, "at_zero_hole": 1.02,
+           "uncertainty": float("inf"), "limit_found": "False", "values": 12, "values_min": 1.072,
+           "values_median": 1.10, "values_max": 1.16, "mesh_status_all_asymptotic": False, "hole_status": "oscillatory"}
+    eroding = [{"contrast": "CRH 4.5/CRH 3", "velocity_ms": 1200, "ratio_at_zero_size": 0.95, "interval_low": 0.9,
+                "interval_high": 1.0}]
+    table = [{"contrast": "CRH 4.5/CRH 3", "velocity": 1200, "cavity_ratio": 1.041, "analytic_stated_S_ratio": 1.03}]
+    inc, rank = erosion_free_rows(refs, [row], eroding, table)
+    assert "eroding FE at zero size 0.950" in inc.case and "cavity level 1.041" in inc.case
+    assert inc.status == rank.status == "undecided" and inc.ours == pytest.approx(10.0)
+    assert "1.072 to 1.160" in inc.case and "above 1 on every mesh and hole" in rank.case and rank.ours == 1.10
+    (depth,) = erosion_free_depth_rows(refs, [{**row, "quantity": "depth_m", "case": "crh3", "values_min": 5.2,
+                                                "values_median": 5.5, "values_max": 6.6}], [])
+    assert depth.status == "undecided" and depth.ours == 5.5 and "5.200 m to 6.600 m" in depth.case

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import collections
 import itertools
+import math
 from dataclasses import dataclass
 
 from scipy.interpolate import PchipInterpolator
@@ -512,6 +513,18 @@ def contrast_rows(refs, contrasts):
     return rows
 
 
+def _limit_found(r) -> bool:
+    """Whether a zero-hole row of the erosion-free study has a limit (a finite extrapolation and band); a CSV's
+    booleans come as text."""
+    return str(r.get("limit_found", True)) == "True" and math.isfinite(float(r["uncertainty"]))
+
+
+def _spread(r, fmt) -> str:
+    """The values of every mesh and hole of a row without a limit: their range and median (not an interval)."""
+    return (f"{int(r['values'])} values over the meshes and pilot holes {fmt.format(float(r['values_min']))} to "
+            f"{fmt.format(float(r['values_max']))} (median {fmt.format(float(r['values_median']))})")
+
+
 def erosion_free_depth_rows(refs, limits, calibrated):
     """Table 3's depths on the erosion-free FE target (a study): with Table 1's HJC as stated, each depth at zero
     element size and zero pilot hole (rows of figures/fe/erosion_free/convergence_holes.csv) judged on the band of
@@ -524,6 +537,13 @@ def erosion_free_depth_rows(refs, limits, calibrated):
             continue
         v, nose = int(r["velocity_ms"]), r["case"]
         ref = refs[f"table3.sim.{v}.{nose}"]
+        if not _limit_found(r):
+            ours = float(r["values_median"])
+            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f} m')}; Table 1 HJC "
+                    f"as stated; a study)")
+            rows.append(Row(ref.item, ref.quantity + " on the erosion-free target", case, ref.value, ours,
+                            _rel(ref.value, ours), ref.tol, "undecided"))
+            continue
         ours, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: {ours:.3f} +- {band:.3f} m; "
                 f"Table 1 HJC as stated; a study)")
@@ -539,6 +559,19 @@ def erosion_free_depth_rows(refs, limits, calibrated):
         rows.append(compare(ref, float(r["depth_calibrated_m"]), case, ref.quantity + " on the erosion-free target "
                             "calibrated on DO1", calibrated=True))
     return rows
+
+
+def _beside(e, o) -> list:
+    """The other models' ratios set beside the erosion-free one: the eroding FE level at zero size (its interval),
+    the cavity level and Eq 9 with the stated S."""
+    beside = []
+    if e is not None:
+        beside.append(f"eroding FE at zero size {float(e['ratio_at_zero_size']):.3f} ({float(e['interval_low']):.3f}"
+                      f" to {float(e['interval_high']):.3f})")
+    if o is not None:
+        beside.append(f"cavity level {float(o['cavity_ratio']):.3f}; Eq 9 with the stated S "
+                      f"{float(o['analytic_stated_S_ratio']):.3f}")
+    return beside
 
 
 def erosion_free_rows(refs, limits, eroding, contrast_table):
@@ -560,16 +593,21 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
         name, v = r["case"], int(r["velocity_ms"])
         prefix, nose = FE_INCREMENTS[name]
         ref = refs[f"{prefix}.{v}.{nose}"]
+        beside = _beside(erode.get((name, v)), others.get((name, v)))
+        if not _limit_found(r):
+            lo, med, hi = (float(r[k]) for k in ("values_min", "values_median", "values_max"))
+            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f}')} as ratios; "
+                    f"{'; '.join(beside + [''])}Table 1 HJC; a study)")
+            rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value,
+                            100 * (med - 1), _rel(ref.value, 100 * (med - 1)), 2.0 / abs(ref.value), "undecided"))
+            side = "above 1 on every mesh and hole" if lo > 1 else ("below 1 on every mesh and hole" if hi < 1
+                                                                     else "on both sides of 1")
+            rows.append(Row(ref.item, f"{name} above 1 (the paper's ranking) on the erosion-free target",
+                            f"{v} m/s (no limit; ratios {lo:.3f} to {hi:.3f}: {side}; a study)", 1.0, med,
+                            _rel(1.0, med), 0.0, "undecided"))
+            continue
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         ours, lo, hi = 100 * (ratio - 1), 100 * (ratio - band - 1), 100 * (ratio + band - 1)
-        e, o = erode.get((name, v)), others.get((name, v))
-        beside = []
-        if e is not None:
-            beside.append(f"eroding FE at zero size {float(e['ratio_at_zero_size']):.3f} ({float(e['interval_low']):.3f}"
-                          f" to {float(e['interval_high']):.3f})")
-        if o is not None:
-            beside.append(f"cavity level {float(o['cavity_ratio']):.3f}; Eq 9 with the stated S "
-                          f"{float(o['analytic_stated_S_ratio']):.3f}")
         case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: ratio {ratio:.3f} +- "
                 f"{band:.3f}; meshes {r['mesh_status_all_asymptotic'] and 'asymptotic' or 'not all asymptotic'}"
                 f"{' (a shot stopped: refined on the meshes before it)' if r.get('meshes_stopped') else ''}; "

@@ -153,9 +153,15 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
         raise ValueError(f"grid study: pilot holes {holes}; allowed: >= 3, refined by one constant ratio")
     ratio = refinement_ratio([1.0 / x for x in holes])
     rows = []
+    value_cols = [c for c in conv.columns if c.startswith("value_at_")]
     for (quantity, case, v), g in conv.groupby(["quantity", "case", "velocity_ms"], sort=False):
         g = g.set_index("pilot_hole").loc[holes]
         f = g.extrapolated.to_numpy()
+        values = g[value_cols].to_numpy().ravel()
+        values = values[np.isfinite(values)]
+        # every mesh's and hole's value: what the study can say when it finds no limit (its range, not an interval)
+        spread = {"values": int(values.size), "values_min": float(values.min()), "values_median": float(np.median(values)),
+                  "values_max": float(values.max())}
         if not np.all(np.isfinite(f)):   # a hole whose meshes stopped too early: nothing to extrapolate to zero hole
             nan = float("nan")
             rows.append({"quantity": quantity, "case": case, "velocity_ms": v,
@@ -166,7 +172,8 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
                          "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
                          "mesh_status_all_asymptotic": False, "meshes_stopped": bool((g.status == STOPPED).any()),
                          "gci_goal": goal_depth if quantity == "depth_m" else goal_contrast, "goal_met": False,
-                         "uncertainty": nan, "paper_simulated": float(g.paper_simulated.iloc[0]), "paper_inside": False})
+                         "uncertainty": nan, "limit_found": False, **spread,
+                         "paper_simulated": float(g.paper_simulated.iloc[0]), "paper_inside": False})
             continue
         r = grid_refinement(f, ratio)
         relative = quantity == "depth_m"
@@ -185,6 +192,7 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
                      "meshes_stopped": bool((g.status == STOPPED).any()),
                      "gci_goal": goal, "goal_met": bool(r.status == MONOTONE and gci <= goal and mesh <= goal
                                                         and (g.status == MONOTONE).all()),
-                     "uncertainty": band, "paper_simulated": paper,
+                     "uncertainty": band, "limit_found": bool(np.isfinite(band) and np.isfinite(r.extrapolated)),
+                     **spread, "paper_simulated": paper,
                      "paper_inside": bool(abs(paper - r.extrapolated) <= band) if np.isfinite(paper) else False})
     return pd.DataFrame(rows)

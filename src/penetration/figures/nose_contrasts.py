@@ -57,8 +57,16 @@ def _free(ax, name, free):
     """The erosion-free FE target on a ratio panel (a study): the contrast at zero element size and zero pilot hole
     with its band (the larger of the holes' and the meshes' GCI)."""
     z = free[(free.quantity == "depth_ratio") & (free.case == name)]
-    ax.errorbar(z.velocity_ms, z.at_zero_hole, yerr=z.uncertainty, fmt="D", ms=4, color=FREE_COLOR, capsize=2, lw=1,
-                label="fe, erosion-free target: at zero element size and zero pilot hole, GCI band (a study)")
+    found = z.limit_found.astype(str) == "True" if "limit_found" in z else pd.Series(True, index=z.index)
+    a = z[found]
+    if len(a):
+        ax.errorbar(a.velocity_ms, a.at_zero_hole, yerr=a.uncertainty, fmt="D", ms=4, color=FREE_COLOR, capsize=2, lw=1,
+                    label="fe, erosion-free target: at zero element size and zero pilot hole, GCI band (a study)")
+    b = z[~found]
+    if len(b):   # no limit under refinement: every mesh's and hole's value, their range and median (not an interval)
+        ax.errorbar(b.velocity_ms - 15, b.values_median, yerr=[b.values_median - b.values_min, b.values_max - b.values_median],
+                    fmt="D", ms=4, mfc="white", color=FREE_COLOR, capsize=2, lw=1,
+                    label="fe, erosion-free target: no limit; range of 4 meshes x 3 pilot holes, median (a study)")
 
 
 @task
