@@ -59,8 +59,8 @@ def _fe_cfg(h):
     return {**CONFIG["fe"], "profiles": {f"free{round(0.07 / h * 100)}": {"element_size": h, "mesh_study_sizes": [h]}}}
 
 
-def _record(h, hole=0.125, formulation="erosion_free", scale=0.6):
-    return {"strength_scale": scale, "element_size": h,
+def _record(h, hole=0.125, formulation="erosion_free", scale=0.6, domain="whole"):
+    return {"strength_scale": scale, "element_size": h, "domain": domain,
             "data": {"target": {"formulation": formulation, "pilot_hole": hole}}}
 
 
@@ -82,6 +82,28 @@ def test_a_scene_takes_the_strength_scale_only_from_a_record_of_its_own_mesh_and
         fe_level.scene_spec(*args, _record(0.07 / 12.8))
     with pytest.raises(ValueError, match="pilot_hole"):
         fe_level.scene_spec(*args, _record(h, hole=0.25))
+    # a scale fitted with the moving window belongs to another run than the scene's whole domain
+    with pytest.raises(ValueError, match="'domain': 'window'"):
+        fe_level.scene_spec(*args, _record(h, domain="window"))
+    assert fe_level.scene_spec(*args, _record(h, domain="window"), domain="window")[0].settings.window_ahead == 1.5
+
+
+def test_the_erosion_free_scenes_compute_every_row_and_a_domain_override_restores_the_window():
+    h = 0.07 / 8.192
+    cfg = _fe_cfg(h)
+    for name in CONFIG["fe_erosion_free"]["scenes"]:
+        sc = _scene(name)
+        whole = fe_level.scene_settings(sc, cfg, "free819")
+        assert (whole.window_ahead, whole.window_tail) == (None, None) and fe_level.domain_of(whole) == "whole"
+        window = fe_level.scene_settings(sc, cfg, "free819", "window")
+        assert (window.window_ahead, window.window_tail) == (1.5, 0.5) and fe_level.domain_of(window) == "window"
+        assert whole.element_size == window.element_size == h
+    # the eroding Table 3 keeps the window; a domain that does not exist is refused by name
+    eroding = read_scene(ROOT / "workflow/scenes/fe/table3.yaml", SCHEMA, ("fe",))
+    sc = resolve("table3", eroding, {"table4_do1": Ogive(4.5, 0.07)}, {}, {})
+    assert fe_level.domain_of(fe_level.scene_settings(sc, cfg, "free819")) == "window"
+    with pytest.raises(ValueError, match="fe.domain = 'all'; allowed: window, whole"):
+        fe_level.scene_settings(sc, cfg, "free819", "all")
 
 
 def test_an_eroding_scene_cannot_take_a_strength_scale_calibration(tmp_path):

@@ -82,6 +82,12 @@ def test_the_study_refuses_meshes_not_refined_by_one_ratio_and_another_formulati
         grid_study.shot_rows(bad, ACROSS)
     with pytest.raises(ValueError, match="profile"):
         grid_study.shot_rows(shots(), {"m1": 8.192})
+    # one shot with the moving window among whole-domain shots: the meshes would not compare
+    mixed = [{**s, "domain": "whole"} for s in shots()]
+    assert set(grid_study.shot_rows(mixed, ACROSS).domain) == {"whole"}
+    mixed[3] = {**mixed[3], "domain": "window"}
+    with pytest.raises(ValueError, match=r"domains \['whole', 'window'\]; allowed: one"):
+        grid_study.shot_rows(mixed, ACROSS)
 
 
 def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():

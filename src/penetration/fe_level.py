@@ -34,18 +34,19 @@ def _check_table1_target(scene, refs):
 
 
 def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expected_depth, calibration=None,
-               velocity_factor=1.0):
+               velocity_factor=1.0, domain=None):
     """The run spec of one shot of an FE scene (``nose``: the name of one of its noses, at one of its ``velocity``
     values times ``velocity_factor``), built once: the scene's concrete (concrete.configured with the scene's
-    effects), the profile's settings (Settings.from_config of the ``fe`` config slice), the scene's target and, where
-    the scene asks for the calibrated erosion strain, the DO1 ``calibration`` (its JSON record, at the profile's
-    element size). Returns (spec, notes) with notes the failure strain, its provenance and the material switches."""
+    effects), the profile's settings (scene_settings: the scene's domain unless ``domain`` names one), the scene's
+    target and, where the scene asks for the calibrated erosion strain, the DO1 ``calibration`` (its JSON record, at
+    the profile's element size). Returns (spec, notes) with notes the failure strain, its provenance and the material
+    switches."""
     _check_table1_target(scene, refs)
     v = float(velocity)
     if not np.any(np.isclose(scene.velocities, v)):
         raise ValueError(f"{scene.name}: velocity {v} is not among the scene's {list(scene.velocities)}")
     switches = concrete.material_switches(scene.effects, scene.material, concrete_cfg)
-    settings = Settings.from_config(fe_cfg, profile)
+    settings = scene_settings(scene, fe_cfg, profile, domain)
     target = TargetSpec.from_scene(scene.fe, fe_cfg["target_radius"], fe_cfg["block_depth"])
     scale, scale_provenance, scaled = 1.0, "none (Table 1's HJC as stated)", {}
     if scene.fe.get("strength_scale") == "calibrated":
@@ -70,6 +71,25 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
                   "strength_scale": scale, "strength_scale_provenance": scale_provenance}
 
 
+DOMAINS = ("window", "whole")
+
+
+def scene_settings(scene, fe_cfg, profile, domain=None):
+    """The mesh and run settings of an FE scene at a profile: Settings.from_config of the ``fe`` config slice, with
+    every row computed where the scene's ``fe.domain`` (or ``domain``, which overrides it) is ``whole``; ``window``
+    (the default) keeps the config's moving window (fe.window_ahead / fe.window_tail)."""
+    domain = domain or scene.fe.get("domain", "window")
+    if domain not in DOMAINS:
+        raise ValueError(f"{scene.name}: fe.domain = {domain!r}; allowed: {', '.join(DOMAINS)}")
+    settings = Settings.from_config(fe_cfg, profile)
+    return dataclasses.replace(settings, window_ahead=None, window_tail=None) if domain == "whole" else settings
+
+
+def domain_of(settings):
+    """'whole' where the settings compute every row, else 'window'."""
+    return "whole" if settings.window_ahead is None and settings.window_tail is None else "window"
+
+
 def _strength_calibration(scene, calibration, settings, target, profile):
     """The DO1 strength scale of an erosion-free scene (fe.strength_scale: calibrated) from its record, checked to
     belong to the scene's mesh and target: (scale, provenance)."""
@@ -82,8 +102,9 @@ def _strength_calibration(scene, calibration, settings, target, profile):
     if not math.isclose(calibration["element_size"], settings.element_size):
         raise ValueError(f"{scene.name}: strength-scale calibration at element size {calibration['element_size']} m "
                          f"used on a {settings.element_size} m mesh")
-    want = {"formulation": target.formulation, "pilot_hole": target.pilot_hole}
-    got = {k: calibration["data"]["target"].get(k) for k in want}
+    want = {"formulation": target.formulation, "pilot_hole": target.pilot_hole, "domain": domain_of(settings)}
+    got = {**{k: calibration["data"]["target"].get(k) for k in ("formulation", "pilot_hole")},
+           "domain": calibration.get("domain", "window")}
     if got != want:
         raise ValueError(f"{scene.name}: strength-scale calibration on a target {got} used on {want}")
     return float(calibration["strength_scale"]), (f"calibrated on DO1 at element size {calibration['element_size']} m, "

@@ -38,9 +38,14 @@ def shot_rows(shots, across) -> pd.DataFrame:
             raise ValueError(f"shot {s['nose']} at {s['velocity']} m/s on {s['profile']}: formulation "
                              f"{s['target']['formulation']}, the study's is erosion_free")
         rows.append({"pilot_hole": float(s["target"]["pilot_hole"]), "profile": s["profile"],
-                     "elements_across": float(across[s["profile"]]),
-                     "element_size_m": s["element_size"], "nose": s["nose"], "velocity_ms": float(s["velocity"]),
+                     "elements_across": float(across[s["profile"]]), "element_size_m": s["element_size"],
+                     # a record from before the key ran with the moving window
+                     "domain": s.get("domain", "window"), "nose": s["nose"], "velocity_ms": float(s["velocity"]),
                      **{k: s.get(k, "") if k == "diagnostic" else s[k] for k in SHOT_COLUMNS}})
+    domains = sorted({r["domain"] for r in rows})
+    if len(domains) > 1:
+        raise ValueError(f"grid study: shots computed on domains {domains}; allowed: one (a window biases a depth by "
+                         "up to several per cent, so the meshes would not compare)")
     return pd.DataFrame(rows).sort_values(["pilot_hole", "velocity_ms", "nose", "elements_across"],
                                           ascending=[False, True, True, True], ignore_index=True)
 

@@ -21,7 +21,7 @@ from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
 from ..fe.solver import Unstable
-from ..fe_level import calibrate_failure_strain, calibrate_strength_scale, scene_spec
+from ..fe_level import calibrate_failure_strain, calibrate_strength_scale, domain_of, scene_settings, scene_spec
 from ..io import load_json, read_inference, task, write_csv, write_json
 from ..shots import expected_depth
 from .common import calibration_row, do1_shot, scene_from_inputs
@@ -102,7 +102,7 @@ def calibrate_fe_strength_do1(inputs, outputs, params):
     mass, vs, depth = do1_shot(refs, params.shot)
     switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
     material = lambda k: concrete.configured(refs, params.hjc, strength_scale=k, **switches)
-    settings = Settings.from_config(cfg, params.profile)
+    settings = scene_settings(sc, cfg, params.profile)
     t0 = time.perf_counter()
     spec = RunSpec(nose, mass, vs, material(1.0), settings, target,
                    expected_depth(nose, mass, vs, refs["table1.fc"].si, refs["table1.rho"].si), sc.friction)
@@ -116,15 +116,15 @@ def calibrate_fe_strength_do1(inputs, outputs, params):
                 "strength surface of Table 1's concrete, on the erosion-free target (no failure strain to calibrate); "
                 "bound to the mesh and the pilot hole it was fitted at",
                 "element_size": settings.element_size, "elements_across_radius": nose.radius / settings.element_size,
-                "profile": params.profile, "scene": sc.name,
+                "profile": params.profile, "scene": sc.name, "domain": domain_of(settings),
                 "data": {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1",
                          "target": dataclasses.asdict(target)},
                 "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
 
 
-def scene_shot(inputs, params, velocity_factor=1.0):
-    """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor); returns (summary, result,
-    spec, scene)."""
+def scene_shot(inputs, params, velocity_factor=1.0, domain=None):
+    """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor; ``domain``: 'window' or 'whole',
+    None: the scene's fe.domain); returns (summary, result, spec, scene)."""
     refs = reference.load_reference(inputs.reference)
     sc = scene_from_inputs(inputs, FE)
     cfg = params.cfg
@@ -132,14 +132,15 @@ def scene_shot(inputs, params, velocity_factor=1.0):
     expected = expected_depth(sc.noses[params.nose], sc.mass, v, sc.target.fc, sc.target.rho)
     calibrated = "calibrated" in (sc.fe.get("erosion_strain"), sc.fe.get("strength_scale"))
     cal = load_json(inputs.cal) if calibrated else None
-    spec, notes = scene_spec(sc, params.nose, v, refs, params.hjc, cfg, params.profile, expected, cal, velocity_factor)
+    spec, notes = scene_spec(sc, params.nose, v, refs, params.hjc, cfg, params.profile, expected, cal, velocity_factor,
+                             domain)
     with progress_to(lambda line: print(line, flush=True)):
         r = run_shot(spec, keep_model=True)
     summary = {"scene": sc.name, "nose": params.nose, "velocity": v, "mass": sc.mass, "profile": params.profile,
                "element_size": spec.settings.element_size, "failure_strain": notes["failure_strain"],
                "failure_strain_provenance": notes["failure_strain_provenance"],
-               "target": dataclasses.asdict(spec.target), "material_switches": notes["material_switches"],
-               "expected_depth_m": expected, "cutoff_hz": spec.settings.cutoff_hz, **r.summary()}
+               "target": dataclasses.asdict(spec.target), "domain": domain_of(spec.settings),
+               "material_switches": notes["material_switches"], "expected_depth_m": expected, "cutoff_hz": spec.settings.cutoff_hz, **r.summary()}
     if sc.fe.get("strength_scale") == "calibrated":
         summary.update(strength_scale=notes["strength_scale"], strength_scale_provenance=notes["strength_scale_provenance"])
     return summary, r, spec, sc
@@ -188,11 +189,12 @@ def fe_shot(inputs, outputs, params):
 def _stopped_shot(outputs, params, sc, stop, wall):
     """The record of an erosion-free shot that stopped: what it was, where and when it stopped, no depth."""
     cfg = params.cfg
-    settings = Settings.from_config(cfg, params.profile)
+    settings = scene_settings(sc, cfg, params.profile)
     nan = float("nan")
     summary = {"scene": sc.name, "nose": params.nose, "velocity": float(params.velocity), "mass": sc.mass,
                "profile": params.profile, "element_size": settings.element_size,
                "target": dataclasses.asdict(TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])),
+               "domain": domain_of(settings),
                "status": "stopped", "diagnostic": str(stop), "depth_m": nan, "wall_time_s": wall, "steps": nan,
                "elements": nan, "energy_error_max": nan, "eroded_mass_kg": 0.0, "ejected_mass_kg": nan,
                "crater_debris_mass_kg": nan, "remap_energy_j": nan}

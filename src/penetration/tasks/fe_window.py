@@ -22,12 +22,10 @@ from types import SimpleNamespace
 import pandas as pd
 
 from ..fe.spec import Settings
+from ..fe_level import DOMAINS
 from ..fe_studies import window_summary
 from ..io import task, write_csv
 from .fe import scene_shot
-
-DOMAINS = ("window", "whole")
-
 
 @task
 def fe_window_study(inputs, outputs, params):
@@ -53,13 +51,12 @@ def window_study(inputs, outputs, params, nose):
     if level.window_ahead is None and level.window_tail is None:
         raise ValueError("fe.window_ahead and fe.window_tail are both unset: there is no window to compare")
     rows, wall = [], []
+    shot = SimpleNamespace(cfg=params.cfg, hjc=params.hjc, profile=params.profile, nose=nose, velocity=params.velocity)
     for domain in DOMAINS:
-        cfg = params.cfg if domain == "window" else {**params.cfg, "window_ahead": None, "window_tail": None}
-        shot = SimpleNamespace(cfg=cfg, hjc=params.hjc, profile=params.profile, nose=nose, velocity=params.velocity)
         for k in range(members):
             print(f"window study, {nose} at {params.velocity} m/s: {domain} domain, realisation {k + 1} of {members}", flush=True)
             factor = 1.0 + k * step
-            summary, r, _, _ = scene_shot(inputs, shot, factor)
+            summary, r, _, _ = scene_shot(inputs, shot, factor, domain)
             rows.append({"domain": domain, "member": k, "striking_velocity_ms": summary["velocity"] * factor,
                          "depth_m": r.depth, "status": r.status, "time_to_rest_s": r.time,
                          "steps": r.steps, "mesh_elements": r.elements,
