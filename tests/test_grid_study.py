@@ -49,6 +49,10 @@ def test_the_study_recovers_the_limits_orders_and_goals_of_an_exact_error_law():
         assert not r.paper_inside   # the paper's values are 5 % off the limits here
     ratio = holes[(holes.quantity == "depth_ratio") & (holes.case == "DO/CRH 4.5")]
     assert len(ratio) == 2 and all(abs(r.at_zero_hole - 3.3 / 3.1) < 5e-3 for r in ratio.itertuples())
+    # the ranking on the limits: DO (3.3) deeper than CRH 4.5 (3.1) than CRH 3 (3.0), by more than the bands
+    ratios = holes[holes.quantity == "depth_ratio"]
+    assert (ratios.ranking == "holds").all() and (ratios.side_of_1 == "above 1 on every mesh and hole").all()
+    assert (holes[holes.quantity == "depth_m"].ranking == "").all()
     cost = grid_study.cost_rows(s)
     assert list(cost.elements_across) == sorted(ACROSS.values()) and (cost.shots == 18).all()
     assert (cost.formulation == "erosion_free").all()
@@ -139,6 +143,17 @@ def test_without_a_limit_the_hole_rows_give_the_range_of_every_value():
         assert r.values_median == pytest.approx(np.median(vals), rel=1e-15)
         assert r.limit_found == bool(np.isfinite(r.uncertainty) and np.isfinite(r.at_zero_hole))
     assert not holes.limit_found.all()          # the scatter defeats the refinement somewhere
+    for r in holes[holes.quantity == "depth_ratio"].itertuples():
+        assert r.ranking == ("undecided" if not r.limit_found else grid_study.ranking(r.at_zero_hole, r.uncertainty))
+        assert not r.paper_inside or r.limit_found   # an infinite band holds no paper value
     clean = grid_study.hole_rows(grid_study.convergence_rows(grid_study.shot_rows(shots(), ACROSS), {}, 0.01, 0.01),
                                  0.01, 0.01)
     assert clean.limit_found.all()
+
+
+def test_ranking_and_side_of_one_on_their_edges():
+    assert grid_study.ranking(1.05, 0.04) == "holds" and grid_study.ranking(0.95, 0.04) == "fails"
+    assert grid_study.ranking(1.05, 0.05) == "undecided" and grid_study.ranking(1.0, 0.0) == "undecided"
+    assert grid_study.side_of_one(1.001, 1.2) == "above 1 on every mesh and hole"
+    assert grid_study.side_of_one(0.8, 0.999) == "below 1 on every mesh and hole"
+    assert grid_study.side_of_one(0.99, 1.01) == grid_study.side_of_one(1.0, 1.1) == "on both sides of 1"

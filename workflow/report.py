@@ -271,11 +271,10 @@ def ranking(rows):
     """The paper's ranking (the ratio above 1) over a contrast's rows: holds when every band is above 1 (with a
     limit), and without one is undecided, saying on which side of 1 every mesh's and hole's value lies."""
     if all(found(r) for r in rows.itertuples()):
-        low, high = rows.at_zero_hole - rows.uncertainty, rows.at_zero_hole + rows.uncertainty
-        return "holds" if (low > 1).all() else "fails" if (high < 1).all() else "is undecided"
-    side = ("every value is above 1" if (rows.values_min > 1).all() else
-            "every value is below 1" if (rows.values_max < 1).all() else "the values lie on both sides of 1")
-    return f"is undecided without a limit ({side})"
+        verdicts = set(rows.ranking)
+        return verdicts.pop() if len(verdicts) == 1 and "undecided" not in verdicts else "is undecided"
+    sides = set(rows.side_of_1)
+    return f"is undecided without a limit ({sides.pop() if len(sides) == 1 else 'on both sides of 1'})"
 
 
 def free_cells(rows):

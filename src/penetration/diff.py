@@ -600,10 +600,8 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
                     f"{'; '.join(beside + [''])}Table 1 HJC; a study)")
             rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value,
                             100 * (med - 1), _rel(ref.value, 100 * (med - 1)), 2.0 / abs(ref.value), "undecided"))
-            side = "above 1 on every mesh and hole" if lo > 1 else ("below 1 on every mesh and hole" if hi < 1
-                                                                     else "on both sides of 1")
             rows.append(Row(ref.item, f"{name} above 1 (the paper's ranking) on the erosion-free target",
-                            f"{v} m/s (no limit; ratios {lo:.3f} to {hi:.3f}: {side}; a study)", 1.0, med,
+                            f"{v} m/s (no limit; ratios {lo:.3f} to {hi:.3f}: {r['side_of_1']}; a study)", 1.0, med,
                             _rel(1.0, med), 0.0, "undecided"))
             continue
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
@@ -614,7 +612,7 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
                 f"holes {r['hole_status']}; {'; '.join(beside)}; Table 1 HJC; a study)")
         rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value, ours,
                         _rel(ref.value, ours), 2.0 / abs(ref.value), interval_status(ref.value, lo, hi, 2.0, False)))
-        ranking = "reproduced" if ratio - band > 1 else ("deviates" if ratio + band < 1 else "undecided")
+        ranking = {"holds": "reproduced", "fails": "deviates"}.get(r["ranking"], "undecided")
         rows.append(Row(ref.item, f"{name} above 1 (the paper's ranking) on the erosion-free target",
                         f"{v} m/s (ratio {ratio:.3f} +- {band:.3f}; a study)", 1.0, ratio, _rel(1.0, ratio), band,
                         ranking))

@@ -211,12 +211,9 @@ def erosion_free(read) -> str:
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         lo, med, hi = (float(r[k]) for k in ("values_min", "values_median", "values_max"))
         if r["limit_found"] == "True":
-            value, rank = f"{ratio:.3f} +- {band:.3f}", "holds" if ratio - band > 1 else ("fails" if ratio + band < 1
-                                                                                          else "undecided")
+            value, rank = f"{ratio:.3f} +- {band:.3f}", r["ranking"]
         else:
-            value = f"no limit: {lo:.3f}-{hi:.3f}, median {med:.3f}"
-            rank = "undecided: " + ("above 1 on every mesh and hole" if lo > 1 else
-                                    "below 1 on every mesh and hole" if hi < 1 else "values on both sides of 1")
+            value, rank = f"no limit: {lo:.3f}-{hi:.3f}, median {med:.3f}", "undecided: " + r["side_of_1"]
         meshes = "asymptotic" if r["mesh_status_all_asymptotic"] == "True" else "not all asymptotic"
         if r["meshes_stopped"] == "True":
             meshes += "; a shot stopped"

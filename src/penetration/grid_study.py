@@ -167,37 +167,48 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
         # every mesh's and hole's value: what the study can say when it finds no limit (its range, not an interval)
         spread = {"values": int(values.size), "values_min": float(values.min()), "values_median": float(np.median(values)),
                   "values_max": float(values.max())}
-        if not np.all(np.isfinite(f)):   # a hole whose meshes stopped too early: nothing to extrapolate to zero hole
-            nan = float("nan")
-            rows.append({"quantity": quantity, "case": case, "velocity_ms": v,
-                         **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)},
-                         "hole_order": nan, "hole_order_coarse": nan, "hole_asymptotic_ratio": nan,
-                         "hole_status": STOPPED, "at_zero_hole": nan, "hole_gci": nan, "hole_gci_relative": nan,
-                         "mesh_gci_largest": float(g.gci_fine.max()),
-                         "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
-                         "mesh_status_all_asymptotic": False, "meshes_stopped": bool((g.status == STOPPED).any()),
-                         "gci_goal": goal_depth if quantity == "depth_m" else goal_contrast, "goal_met": False,
-                         "uncertainty": nan, "limit_found": False, **spread,
-                         "paper_simulated": float(g.paper_simulated.iloc[0]), "paper_inside": False})
-            continue
-        r = grid_refinement(f, ratio)
         relative = quantity == "depth_m"
-        gci = r.gci_fine_relative if relative else r.gci_fine
-        mesh = (g.gci_fine_relative if relative else g.gci_fine).max()
         goal = goal_depth if relative else goal_contrast
         paper = float(g.paper_simulated.iloc[0])
-        band = max(r.gci_fine, float(g.gci_fine.max()))
-        rows.append({"quantity": quantity, "case": case, "velocity_ms": v,
-                     **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)},
-                     "hole_order": r.order, "hole_order_coarse": r.order_coarse, "hole_asymptotic_ratio": r.asymptotic_ratio,
-                     "hole_status": r.status, "at_zero_hole": r.extrapolated, "hole_gci": r.gci_fine,
-                     "hole_gci_relative": r.gci_fine_relative, "mesh_gci_largest": float(g.gci_fine.max()),
+        row = {"quantity": quantity, "case": case, "velocity_ms": v,
+               **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)}}
+        if np.all(np.isfinite(f)):
+            r = grid_refinement(f, ratio)
+            gci = r.gci_fine_relative if relative else r.gci_fine
+            mesh = (g.gci_fine_relative if relative else g.gci_fine).max()
+            band = max(r.gci_fine, float(g.gci_fine.max()))
+            limit = bool(np.isfinite(band) and np.isfinite(r.extrapolated))
+            met = bool(r.status == MONOTONE and gci <= goal and mesh <= goal and (g.status == MONOTONE).all())
+            hole = {"hole_order": r.order, "hole_order_coarse": r.order_coarse,
+                    "hole_asymptotic_ratio": r.asymptotic_ratio, "hole_status": r.status,
+                    "at_zero_hole": r.extrapolated, "hole_gci": r.gci_fine, "hole_gci_relative": r.gci_fine_relative}
+        else:   # a hole whose meshes stopped too early: nothing to extrapolate to zero hole
+            nan = float("nan")
+            band, limit, met = nan, False, False
+            hole = {"hole_order": nan, "hole_order_coarse": nan, "hole_asymptotic_ratio": nan, "hole_status": STOPPED,
+                    "at_zero_hole": nan, "hole_gci": nan, "hole_gci_relative": nan}
+        rows.append({**row, **hole, "mesh_gci_largest": float(g.gci_fine.max()),
                      "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
-                     "mesh_status_all_asymptotic": bool((g.status == MONOTONE).all()),
+                     "mesh_status_all_asymptotic": bool(np.all(np.isfinite(f)) and (g.status == MONOTONE).all()),
                      "meshes_stopped": bool((g.status == STOPPED).any()),
-                     "gci_goal": goal, "goal_met": bool(r.status == MONOTONE and gci <= goal and mesh <= goal
-                                                        and (g.status == MONOTONE).all()),
-                     "uncertainty": band, "limit_found": bool(np.isfinite(band) and np.isfinite(r.extrapolated)),
-                     **spread, "paper_simulated": paper,
-                     "paper_inside": bool(abs(paper - r.extrapolated) <= band) if np.isfinite(paper) else False})
+                     "gci_goal": goal, "goal_met": met, "uncertainty": band, "limit_found": limit, **spread,
+                     # a contrast's verdict on the paper's ranking (the ratio above 1): on its limit where there is
+                     # one, else undecided, with the side of 1 its values lie on
+                     "ranking": "" if relative else ranking(hole["at_zero_hole"], band) if limit else "undecided",
+                     "side_of_1": "" if relative else side_of_one(spread["values_min"], spread["values_max"]),
+                     "paper_simulated": paper,
+                     "paper_inside": bool(limit and np.isfinite(paper) and abs(paper - hole["at_zero_hole"]) <= band)})
     return pd.DataFrame(rows)
+
+
+def side_of_one(low, high) -> str:
+    """Where a study's depth ratios, ``low`` to ``high`` over every mesh and hole, lie against 1 (the paper's ranking:
+    the ratio above 1), said of a range without a limit."""
+    return ("above 1 on every mesh and hole" if low > 1 else "below 1 on every mesh and hole" if high < 1
+            else "on both sides of 1")
+
+
+def ranking(ratio, band) -> str:
+    """The paper's ranking (a depth ratio above 1) judged on a limit ``ratio`` +- ``band``: holds, fails or
+    undecided (the band holds 1)."""
+    return "holds" if ratio - band > 1 else "fails" if ratio + band < 1 else "undecided"
