@@ -199,3 +199,53 @@ def test_a_stopped_erosion_free_shot_is_recorded_and_a_stopped_eroding_shot_fail
     assert rec["target"]["pilot_hole"] == 0.125 and rec["element_size"] == 0.07 / 16 and rec["eroded_mass_kg"] == 0.0
     import pandas as pd
     assert len(pd.read_csv(outputs.histories)) == 0 and list(pd.read_csv(outputs.fields).columns)[:2] == ["r0", "z0"]
+
+
+@pytest.mark.parametrize("task", ["calibrate_fe_strength_do1", "calibrate_fe_do1"])
+def test_the_do1_calibration_tasks_record_their_fit_and_resume_from_their_trials(tmp_path, monkeypatch, task):
+    """Both DO1 calibrations through their tasks, with the FE shot replaced by a depth law whose root is known
+    (strength scale 0.55; failure strain 0.6): the record holds the fit, DO1's data, the mesh and what the value is
+    bound to; run again, every trial comes from the kept trials and no shot runs."""
+    import math
+
+    from penetration.io import nose_record
+    from penetration.tasks import fe as fe_tasks
+    calls = []
+
+    def run_shot(spec, **kw):
+        calls.append(spec)
+        x = (spec.material.strength_scale / 0.55) ** 0.7 if task == "calibrate_fe_strength_do1" else \
+            (spec.settings.controls.erosion_value / 0.6) ** 0.5
+        return SimpleNamespace(depth=5.1 / x * (1 + 0.003 * math.sin(40 * x)), wall_time=1.0, status="rest",
+                               peak_deceleration=1.0, elements=10, steps=10, summary=lambda: {"energy_error_max": 0.0})
+
+    monkeypatch.setattr(fe_level, "run_shot", run_shot)
+    nose = tmp_path / "do1.json"
+    nose.write_text(json.dumps({"nose": nose_record(Ogive(4.5, 0.07))}))
+    h = 0.07 / 16.0
+    scene = ROOT / "workflow/scenes/fe/table3_erosion_free_calibrated.yaml"
+    inputs = SimpleNamespace(reference=str(ROOT / CONFIG["reference"]), do1=str(nose), fig4=str(nose), scene=str(scene),
+                             schema=str(SCHEMA))
+    params = SimpleNamespace(cfg=_fe_cfg(h), hjc=CONFIG["concrete"], shot=CONFIG["calibration"]["do1"],
+                             profile="free1600", bracket=[0.35, 0.75], size=h)
+    outputs = SimpleNamespace(json=str(tmp_path / "out" / "calibration.json"))
+    getattr(fe_tasks, task)(inputs, outputs, params)
+    rec = json.loads(Path(outputs.json).read_text())
+    key, root = ("strength_scale", 0.55) if task == "calibrate_fe_strength_do1" else ("fs", 0.6)
+    assert rec[key] == pytest.approx(root, rel=0.03) and abs(rec["residual_m"]) <= CONFIG["fe"]["calibration_tol_m"]
+    assert rec["element_size"] == h and rec["elements_across_radius"] == pytest.approx(16.0, rel=1e-12)
+    mass, vs, depth = (REFS[CONFIG["calibration"]["do1"][q]].si for q in ("mass", "velocity", "depth"))
+    assert rec["data"] | {"target": None} == {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1",
+                                              "target": None}
+    assert rec["profile"] == "free1600" and len(rec["runs"]) == len(calls) >= 2
+    if key == "fs":
+        assert rec["data"]["target"] == "semi_infinite" and rec["calibration"] == "fe_do1"
+        assert all(s.target.formulation == "eroding" for s in calls)
+    else:
+        assert rec["data"]["target"]["pilot_hole"] == 0.125 and rec["domain"] == "whole"
+        assert rec["scene"] == "table3_erosion_free_calibrated" and rec["calibration"] == "fe_strength_do1"
+        assert all(s.settings.window_ahead is None and s.target.formulation == "erosion_free" for s in calls)
+    n = len(calls)
+    Path(outputs.json).unlink()
+    getattr(fe_tasks, task)(inputs, outputs, params)
+    assert len(calls) == n and json.loads(Path(outputs.json).read_text())[key] == rec[key]

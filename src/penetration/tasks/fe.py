@@ -60,30 +60,43 @@ class TrialMemo(dict):
             fh.flush()
 
 
+def _calibrate_on_do1(outputs, spec, depth, memo_definition, key, fit, head, where, data_target):
+    """The frame the DO1 calibrations share: the finished trials kept beside the output (an interrupted calibration
+    resumes), the fit ``fit(memo, log)`` of ``spec`` on the measured ``depth``, and the record: ``head`` (what is
+    fitted), the mesh, ``where`` (the profile and what else the value is bound to), DO1's data on ``data_target``,
+    the wall time and the fit (the value, its residual, the runs)."""
+    t0 = time.perf_counter()
+    memo = TrialMemo(Path(outputs.json).parent / "trials", *memo_definition, key=key)
+    if memo:
+        print(f"{len(memo)} finished trials of this calibration found in {memo.path}: not run again", flush=True)
+    result = fit(memo, lambda line: print(line, flush=True))
+    h = spec.settings.element_size
+    write_json({**head, "element_size": h, "elements_across_radius": spec.nose.radius / h, **where,
+                "data": {"measured_depth": depth, "vs": spec.velocity, "mass": spec.mass, "nose": "table4_do1",
+                         "target": data_target},
+                "wall_time_s": time.perf_counter() - t0, **result}, outputs.json)
+
+
 @task
 def calibrate_fe_do1(inputs, outputs, params):
     """Failure strain fs making the FE DO1 depth equal the measured 5.1 m, at one element size."""
     refs = reference.load_reference(inputs.reference)
     cfg = params.cfg
-    h = float(params.size)
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
-    t0 = time.perf_counter()
     rho, fc = refs["table1.rho"].si, refs["table1.fc"].si
-    spec = RunSpec(nose, mass, vs, concrete.configured(refs, params.hjc), Settings.from_config(cfg, params.profile, h),
+    spec = RunSpec(nose, mass, vs, concrete.configured(refs, params.hjc),
+                   Settings.from_config(cfg, params.profile, float(params.size)),
                    TargetSpec("semi_infinite", cfg["target_radius"]), expected_depth(nose, mass, vs, fc, rho))
-    memo = TrialMemo(Path(outputs.json).parent / "trials", spec.nose, spec.mass, spec.velocity, depth, spec.material,
-                     spec.settings, spec.target, spec.expected_depth)
-    if memo:
-        print(f"{len(memo)} finished trials of this calibration found in {memo.path}: not run again", flush=True)
-    fit = calibrate_failure_strain(spec, depth, tuple(cfg["fs_bracket"]), cfg["calibration_tol_m"],
-                                   log=lambda line: print(line, flush=True), memo=memo)
-    write_json({"calibration": "fe_do1", "fitted_quantity": "failure strain fs: erosion of an element once its "
-                "equivalent plastic strain reaches fs (the paper's calibrated 0.38 belongs to its own 3-D mesh; fs "
-                "is bound to the element size)",
-                "element_size": h, "elements_across_radius": nose.radius / h, "profile": params.profile,
-                "data": {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1", "target": "semi_infinite"},
-                "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
+    _calibrate_on_do1(
+        outputs, spec, depth,
+        (spec.nose, spec.mass, spec.velocity, depth, spec.material, spec.settings, spec.target, spec.expected_depth),
+        "fs", lambda memo, log: calibrate_failure_strain(spec, depth, tuple(cfg["fs_bracket"]), cfg["calibration_tol_m"],
+                                                         log=log, memo=memo),
+        {"calibration": "fe_do1", "fitted_quantity": "failure strain fs: erosion of an element once its equivalent "
+         "plastic strain reaches fs (the paper's calibrated 0.38 belongs to its own 3-D mesh; fs is bound to the "
+         "element size)"},
+        {"profile": params.profile}, "semi_infinite")
 
 
 @task
@@ -103,23 +116,17 @@ def calibrate_fe_strength_do1(inputs, outputs, params):
     switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
     material = lambda k: concrete.configured(refs, params.hjc, strength_scale=k, **switches)
     settings = scene_settings(sc, cfg, params.profile)
-    t0 = time.perf_counter()
     spec = RunSpec(nose, mass, vs, material(1.0), settings, target,
                    expected_depth(nose, mass, vs, refs["table1.fc"].si, refs["table1.rho"].si), sc.friction)
-    memo = TrialMemo(Path(outputs.json).parent / "trials", spec.nose, spec.mass, spec.velocity, depth, switches,
-                     spec.settings, spec.target, spec.expected_depth, key="strength_scale")
-    if memo:
-        print(f"{len(memo)} finished trials of this calibration found in {memo.path}: not run again", flush=True)
-    fit = calibrate_strength_scale(spec, depth, material, tuple(params.bracket), cfg["calibration_tol_m"],
-                                   log=lambda line: print(line, flush=True), memo=memo)
-    write_json({"calibration": "fe_strength_do1", "fitted_quantity": "HJC strength_scale: a factor on the whole "
-                "strength surface of Table 1's concrete, on the erosion-free target (no failure strain to calibrate); "
-                "bound to the mesh and the pilot hole it was fitted at",
-                "element_size": settings.element_size, "elements_across_radius": nose.radius / settings.element_size,
-                "profile": params.profile, "scene": sc.name, "domain": domain_of(settings),
-                "data": {"measured_depth": depth, "vs": vs, "mass": mass, "nose": "table4_do1",
-                         "target": dataclasses.asdict(target)},
-                "wall_time_s": time.perf_counter() - t0, **fit}, outputs.json)
+    _calibrate_on_do1(
+        outputs, spec, depth,
+        (spec.nose, spec.mass, spec.velocity, depth, switches, spec.settings, spec.target, spec.expected_depth),
+        "strength_scale", lambda memo, log: calibrate_strength_scale(spec, depth, material, tuple(params.bracket),
+                                                                     cfg["calibration_tol_m"], log=log, memo=memo),
+        {"calibration": "fe_strength_do1", "fitted_quantity": "HJC strength_scale: a factor on the whole strength "
+         "surface of Table 1's concrete, on the erosion-free target (no failure strain to calibrate); bound to the "
+         "mesh, the pilot hole and the domain it was fitted on"},
+        {"profile": params.profile, "scene": sc.name, "domain": domain_of(settings)}, dataclasses.asdict(target))
 
 
 def scene_shot(inputs, params, velocity_factor=1.0, domain=None):
