@@ -3,6 +3,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from penetration import mesh_convergence as mc
 from penetration.mesh_convergence import size_regression
 from penetration.fe_studies import extrapolation_rows
 
@@ -83,3 +84,53 @@ def test_grid_refinement_says_when_it_is_not_in_the_asymptotic_range():
         grid_refinement([1.0, 2.0, 3.0], 1.0)
     with pytest.raises(ValueError, match=">= 3"):
         grid_refinement([1.0, 2.0], 1.25)
+
+
+@pytest.mark.parametrize("p, n", [(1.0, (8.192, 10.24, 12.8, 16.0)), (2.0, (8.192, 10.24, 12.8, 16.0)),
+                                  (1.6, (4.0, 6.0, 9.0, 13.5, 20.25)), (0.8, (3.0, 5.0, 6.0, 11.0))])
+def test_least_squares_recovers_an_exact_power_law_and_reduces_to_the_gci(p, n):
+    """On an exact law f = 3 - c h^p (any ratios) the free fit finds p and f0, its standard deviation vanishes
+    and U is 1.25 times the finest mesh's error (the GCI of a well-behaved set, as the procedure says)."""
+    h = 0.07 / np.asarray(n)
+    c = 0.1 / (0.07 / 8) ** p   # a 10 % error at 8 across
+    r = mc.least_squares_uncertainty(h, 3.0 - c * h ** p)
+    assert r.fit == mc.FREE and r.order == pytest.approx(p, rel=1e-6) and r.exact == pytest.approx(3.0, rel=1e-9)
+    assert r.std < 1e-6 * r.error and r.safety == 1.25
+    assert r.error == pytest.approx(c * h.min() ** p, rel=1e-6)
+    assert r.uncertainty == pytest.approx(1.25 * c * h.min() ** p, rel=1e-6) and r.inside(3.0)
+
+
+def test_least_squares_takes_fixed_orders_below_half_and_its_uncertainty_holds_the_limit():
+    h = 0.07 / np.array([8.192, 10.24, 12.8, 16.0])
+    r = mc.least_squares_uncertainty(h, 2.0 + 0.4 * (h / h.max()) ** 0.3)
+    assert r.order == pytest.approx(0.3, rel=1e-6) and r.fit in (mc.FIRST, mc.SECOND, mc.FIRST_SECOND)
+    assert r.safety == 3.0 and r.inside(2.0) and not mc.least_squares_uncertainty(h, 2.0 + 0.1 * h / h.max()).inside(2.2)
+
+
+def test_least_squares_uncertainty_covers_the_limit_of_noisy_results():
+    """Results with a second-order error and a noise of 30 and 100 % of the finest mesh's error: U holds the limit in
+    at least 93 % of 150 draws each, and grows with the noise (the scatter penalty where s >= D)."""
+    h = 0.07 / np.array([8.192, 10.24, 12.8, 16.0])
+    rng = np.random.default_rng(7)
+    err = 0.05 * (h / h.max()) ** 2
+    median = {}
+    for noise in (0.3, 1.0):
+        hits, us = 0, []
+        for _ in range(150):
+            r = mc.least_squares_uncertainty(h, 1.0 + err + noise * err.min() * rng.normal(size=h.size))
+            hits += r.inside(1.0)
+            us.append(r.uncertainty)
+        assert hits / 150 >= 0.93, (noise, hits)
+        median[noise] = np.median(us)
+    assert median[1.0] > 2 * median[0.3]
+
+
+def test_least_squares_refuses_too_few_or_repeated_meshes_and_gives_zero_on_constant_results():
+    with pytest.raises(ValueError, match=">= 4 finite results"):
+        mc.least_squares_uncertainty([0.01, 0.008, 0.0064], [1.0, 1.1, 1.2])
+    with pytest.raises(ValueError, match=">= 4 finite results"):
+        mc.least_squares_uncertainty([0.01, 0.008, 0.0064, 0.005], [1.0, np.nan, 1.2, 1.3])
+    with pytest.raises(ValueError, match="distinct sizes"):
+        mc.least_squares_uncertainty([0.01, 0.008, 0.008, 0.005], [1.0, 1.1, 1.2, 1.3])
+    r = mc.least_squares_uncertainty([0.01, 0.008, 0.0064, 0.005], [2.0] * 4)
+    assert r.uncertainty == 0.0 and r.value == 2.0

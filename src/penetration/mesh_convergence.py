@@ -140,3 +140,128 @@ def grid_refinement(f, ratio, safety=1.25):
     return GridRefinement(values=tuple(float(x) for x in f), ratio=float(ratio), order=p, extrapolated=float(ext),
                           gci_fine=float(gci), gci_fine_relative=float(rel), order_coarse=order_c,
                           asymptotic_ratio=asym, status=status, safety=float(safety))
+
+
+# ---------------------------------------------------------------- least-squares uncertainty (Eça & Hoekstra 2014)
+FREE, FIRST, SECOND, FIRST_SECOND = "p free", "p = 1", "p = 2", "p = 1 and 2"
+_TERMS = {FIRST: (1.0,), SECOND: (2.0,), FIRST_SECOND: (1.0, 2.0)}
+LS_ORDER_RANGE = (0.5, 2.1)   # the free fit's order within it, with a small scatter: the safety factor 1.25
+
+
+@dataclass(frozen=True)
+class LeastSquaresUncertainty:
+    """The numerical uncertainty of the finest mesh's result from a least-squares fit of results on >= 4 meshes
+    (the procedure of Eça & Hoekstra, J. Comput. Phys. 262, 2014)."""
+    n: int
+    fit: str              # the error expansion selected: FREE, FIRST, SECOND or FIRST_SECOND
+    weighted: bool        # the fit weighted towards the fine meshes (weights 1/h) had the smaller standard deviation
+    order: float          # the observed order of the free fit (whichever expansion is selected)
+    exact: float          # the selected fit's value at h = 0
+    error: float          # its error estimate of the finest mesh's result, |fit(h_fine) - fit(0)|
+    std: float            # the fit's standard deviation (n - parameters degrees of freedom)
+    data_range: float     # (max f - min f) / (n - 1)
+    safety: float         # 1.25 or 3
+    value: float          # the finest mesh's result
+    uncertainty: float    # U: the interval value +- U is to hold the exact solution (about 95 %)
+    relative: float       # U / |value|
+
+    def inside(self, x):
+        return bool(abs(x - self.value) <= self.uncertainty)
+
+
+def _linear_fit(h, f, w, exps):
+    """Weighted least squares of f = f0 + sum_k a_k h^e_k: (f0, coefficients, the fitted values)."""
+    A = np.column_stack([np.ones_like(h)] + [h ** e for e in exps])
+    sw = np.sqrt(w)
+    coef, *_ = np.linalg.lstsq(A * sw[:, None], f * sw, rcond=None)
+    return float(coef[0]), coef[1:], A @ coef
+
+
+def _std(f, fit, w, parameters):
+    """The weighted residual standard deviation (weights summing to 1) with n - parameters degrees of freedom."""
+    n = f.size
+    return float(np.sqrt(n * np.sum(w * (f - fit) ** 2) / (n - parameters)))
+
+
+def _line_residual(x, f, w):
+    """The weighted residual sum of squares of f = a + b x (weights summing to 1), for each row of ``x``."""
+    xm = x @ w
+    fm = f @ w
+    sxx = ((x - xm[..., None]) ** 2) @ w
+    sxf = ((x - xm[..., None]) * (f - fm)) @ w
+    b = np.where(sxx > 0, sxf / np.where(sxx > 0, sxx, 1.0), 0.0)
+    return ((f - fm) - b[..., None] * (x - xm[..., None])) ** 2 @ w
+
+
+def _free_fit(h, f, w):
+    """f = f0 + a h^p with p free: p by a scan of the residual over 0.01..12 refined by a bounded minimisation
+    (the coefficients are linear for each p, a weighted straight line in h^p). Returns (p, f0, fitted values)."""
+    from scipy.optimize import minimize_scalar
+
+    hs = h / h.max()   # scaled sizes: the coefficient a stays of the order of the results
+    grid = np.linspace(0.01, 12.0, 600)
+    k = int(np.argmin(_line_residual(hs[None, :] ** grid[:, None], f, w)))
+    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    cost = lambda p: float(_line_residual(hs ** p, f, w))
+    p = float(minimize_scalar(cost, bounds=(lo, hi), method="bounded", options={"xatol": 1e-10}).x)
+    f0, _, fit = _linear_fit(hs, f, w, (p,))
+    return p, f0, fit
+
+
+def least_squares_uncertainty(h, f):
+    """Eça & Hoekstra's (2014) uncertainty of the finest mesh's result from results ``f`` on >= 4 meshes of sizes
+    ``h`` (any unit, refined by any ratios).
+
+    The error is fitted in the least-squares sense, unweighted and weighted towards the fine meshes (weights
+    1/h), the one of smaller standard deviation kept: first f = f0 + a h^p with p free; where p falls outside
+    0.5..2.1 the expansions of fixed orders (a h, a h^2, a h + b h^2) take its place, the one of smallest standard
+    deviation selected (the procedure does so below 0.5; above 2.1 this implementation does too, since a free
+    order fitted to four meshes with one degree of freedom reached 4-12 on noisy second-order data and its tiny
+    error estimate missed the limit in a sixth of draws). The error estimate of the finest result is
+    |fit(h_fine) - f0|. With the data range D = (max f - min f) / (n - 1) and the fit's standard deviation s
+    (n - parameters degrees of freedom): where s < D, U = Fs error + s + |f_fine - fit(h_fine)|, Fs = 1.25 for the
+    free fit with 0.5 <= p < 2.1, else 3; where s >= D (the scatter as large as the trend),
+    U = 3 s / D (error + s + |f_fine - fit(h_fine)|). Results all equal (D = 0) have U = 0.
+
+    Four meshes refined by 1.25 span sizes of 2 to 1 only: the order is then poorly determined. On first-order
+    data with a noise of a tenth of the finest mesh's error, U held the limit in about 70 % of draws; on
+    second-order data with a noise of 0.3-1 times it, in 96-99 % (tests)."""
+    h, f = np.asarray(h, float), np.asarray(f, float)
+    if h.shape != f.shape or h.ndim != 1 or h.size < 4 or not (np.all(np.isfinite(f)) and np.all(h > 0)):
+        raise ValueError(f"least_squares_uncertainty: {h.size} meshes; allowed: >= 4 finite results at sizes h > 0")
+    if np.unique(h).size != h.size:
+        raise ValueError("least_squares_uncertainty: two meshes of one size; allowed: distinct sizes")
+    fine = int(np.argmin(h))
+    n = f.size
+    D = float((f.max() - f.min()) / (n - 1))
+    if D == 0.0:
+        v = float(f[fine])
+        return LeastSquaresUncertainty(n, FREE, False, float("nan"), v, 0.0, 0.0, 0.0, 1.25, v, 0.0, 0.0)
+    weights = {False: np.full(n, 1.0 / n), True: (1.0 / h) / np.sum(1.0 / h)}
+    best = None
+    for weighted, w in weights.items():
+        p, f0, fit = _free_fit(h, f, w)
+        cand = (_std(f, fit, w, 3), FREE, weighted, p, f0, fit)
+        if best is None or cand[0] < best[0]:
+            best = cand
+    order = best[3]
+    if not LS_ORDER_RANGE[0] <= order < LS_ORDER_RANGE[1]:
+        best = None
+        for name, exps in _TERMS.items():
+            for weighted, w in weights.items():
+                f0, _, fit = _linear_fit(h / h.max(), f, w, exps)
+                cand = (_std(f, fit, w, 1 + len(exps)), name, weighted, order, f0, fit)
+                if best is None or cand[0] < best[0]:
+                    best = cand
+    s, name, weighted, _, f0, fit = best
+    error = abs(float(fit[fine]) - f0)
+    miss = abs(float(f[fine] - fit[fine]))
+    if s < D:
+        safety = 1.25 if name == FREE and LS_ORDER_RANGE[0] <= order < LS_ORDER_RANGE[1] else 3.0
+        U = safety * error + s + miss
+    else:
+        safety = 3.0
+        U = 3.0 * s / D * (error + s + miss)
+    v = float(f[fine])
+    return LeastSquaresUncertainty(n, name, bool(weighted), float(order), float(f0), error, s, D, safety, v, float(U),
+                                   float(U / abs(v)) if v != 0 else float("inf"))
