@@ -41,6 +41,10 @@ def test_the_study_recovers_the_limits_orders_and_goals_of_an_exact_error_law():
     np.testing.assert_allclose(d.observed_order, 2.0, rtol=1e-6)
     for r in d.itertuples():
         assert r.extrapolated == pytest.approx(LIMIT[r.case] * r.velocity_ms / 500.0 + 1.5 * r.pilot_hole ** 2, rel=1e-10)
+        # the least-squares uncertainty on all four meshes: the same limit, U the GCI of the finest
+        assert r.ls_fit == "p free" and r.ls_order == pytest.approx(2.0, rel=1e-6)
+        assert r.ls_exact == pytest.approx(r.extrapolated, rel=1e-9) and r.ls_value == r.value_at_16_across
+        assert r.ls_uncertainty == pytest.approx(1.25 * abs(r.ls_value - r.ls_exact), rel=1e-6)
     holes = grid_study.hole_rows(conv, 0.01, 0.01)
     dd = holes[holes.quantity == "depth_m"]
     np.testing.assert_allclose(dd.hole_order, 2.0, rtol=1e-6)
@@ -112,6 +116,9 @@ def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():
     assert at.loc["crh3", "observed_order"] == pytest.approx(2.0, rel=1e-6)   # the exact law on the coarser three
     assert at.loc["crh3", "extrapolated"] == pytest.approx(LIMIT["crh3"] + 1.5 * HOLES[0] ** 2, rel=1e-9)
     assert at.loc["CRH 4.5/CRH 3", "status"] == STOPPED and at.loc["DO/CRH 4.5", "status"] == MONOTONE
+    # three meshes ran: too few for the least-squares uncertainty, which the complete sequences have
+    assert at.loc["crh3", "ls_fit"] == "" and np.isnan(at.loc["crh3", "ls_uncertainty"])
+    assert at.loc["DO/CRH 4.5", "ls_fit"] == "p free" and np.isfinite(at.loc["DO/CRH 4.5", "ls_uncertainty"])
     holes = grid_study.hole_rows(conv, 0.01, 0.01).set_index(["case", "velocity_ms"])
     assert holes.loc[("crh3", 500.0), "meshes_stopped"] and not holes.loc[("crh3", 500.0), "goal_met"]
     assert not holes.loc[("crh3", 1200.0), "meshes_stopped"]

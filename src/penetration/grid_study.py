@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from .fe_studies import CONTRASTS
-from .mesh_convergence import MONOTONE, grid_refinement
+from .mesh_convergence import MONOTONE, grid_refinement, least_squares_uncertainty
 
 STOPPED = "stopped"   # a shot of the sequence stopped (tasks.fe.fe_shot's record): refined up to it, no goal met
 
@@ -75,6 +75,15 @@ def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
         order = order_c = asym = ext = gci_f = gci_rel = nan
         status = STOPPED
     gci = gci_rel if relative else gci_f
+    # Eça & Hoekstra's least-squares uncertainty of the finest mesh's value, on every mesh that ran (>= 4): the
+    # estimate that stands where the three-mesh GCI finds no asymptotic range (mesh_convergence)
+    if upto >= 4:
+        ls = least_squares_uncertainty(1.0 / np.asarray(across[:upto], float), f[:upto])
+        ls_cols = {"ls_fit": ls.fit, "ls_order": ls.order, "ls_value": ls.value, "ls_exact": ls.exact,
+                   "ls_uncertainty": ls.uncertainty, "ls_uncertainty_relative": ls.relative}
+    else:
+        ls_cols = {"ls_fit": "", "ls_order": nan, "ls_value": nan, "ls_exact": nan, "ls_uncertainty": nan,
+                   "ls_uncertainty_relative": nan}
     return {"quantity": quantity, "case": case, "velocity_ms": v,
             **{f"value_at_{n:g}_across": x for n, x in zip(across, f)},
             "meshes_refined": upto if upto >= 3 else 0,
@@ -82,7 +91,8 @@ def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
             "status": status, "extrapolated": ext, "gci_fine": gci_f,
             "gci_fine_relative": gci_rel, "gci_goal": goal, "gci_goal_kind": "relative" if relative else "absolute",
             "goal_met": bool(status == MONOTONE and gci <= goal), "paper_simulated": paper,
-            "paper_inside_gci_band": bool(abs(paper - ext) <= gci_f) if np.isfinite(paper) and np.isfinite(ext) else False}
+            "paper_inside_gci_band": bool(abs(paper - ext) <= gci_f) if np.isfinite(paper) and np.isfinite(ext) else False,
+            **ls_cols}
 
 
 def convergence_rows(shots: pd.DataFrame, paper_depth: dict, goal_depth, goal_contrast) -> pd.DataFrame:
