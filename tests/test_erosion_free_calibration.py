@@ -240,6 +240,7 @@ def test_the_do1_calibration_tasks_record_their_fit_and_resume_from_their_trials
     assert rec["profile"] == "free1600" and len(rec["runs"]) == len(calls) >= 2
     if key == "fs":
         assert rec["data"]["target"] == "semi_infinite" and rec["calibration"] == "fe_do1"
+        assert "domain" not in rec and "scene" not in rec   # the eroding record as before
         assert all(s.target.formulation == "eroding" for s in calls)
     else:
         assert rec["data"]["target"]["pilot_hole"] == 0.125 and rec["domain"] == "whole"

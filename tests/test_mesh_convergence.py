@@ -94,7 +94,8 @@ def test_least_squares_recovers_an_exact_power_law_and_reduces_to_the_gci(p, n):
     h = 0.07 / np.asarray(n)
     c = 0.1 / (0.07 / 8) ** p   # a 10 % error at 8 across
     r = mc.least_squares_uncertainty(h, 3.0 - c * h ** p)
-    assert r.fit == mc.FREE and r.order == pytest.approx(p, rel=1e-6) and r.exact == pytest.approx(3.0, rel=1e-9)
+    assert r.fit == mc.FREE
+    assert r.order == pytest.approx(p, rel=1e-6) and r.exact == pytest.approx(3.0, rel=1e-9)
     assert r.std < 1e-6 * r.error and r.safety == 1.25
     assert r.error == pytest.approx(c * h.min() ** p, rel=1e-6)
     assert r.uncertainty == pytest.approx(1.25 * c * h.min() ** p, rel=1e-6) and r.inside(3.0)
@@ -133,4 +134,26 @@ def test_least_squares_refuses_too_few_or_repeated_meshes_and_gives_zero_on_cons
     with pytest.raises(ValueError, match="distinct sizes"):
         mc.least_squares_uncertainty([0.01, 0.008, 0.008, 0.005], [1.0, 1.1, 1.2, 1.3])
     r = mc.least_squares_uncertainty([0.01, 0.008, 0.0064, 0.005], [2.0] * 4)
-    assert r.uncertainty == 0.0 and r.value == 2.0
+    assert r.uncertainty == 0.0 and r.value == 2.0 and r.fit == mc.CONSTANT
+
+
+def test_least_squares_distrusts_an_order_above_two_and_penalises_scatter_as_large_as_the_trend():
+    h = 0.07 / np.array([8.192, 10.24, 12.8, 16.0])
+    # an exact third-order law: the free order (3) gives way to the fixed orders 2 and 1 + 2, Fs = 3, U holds the limit
+    r = mc.least_squares_uncertainty(h, 1.0 + 0.05 * (h / h.max()) ** 3)
+    assert r.order == pytest.approx(3.0, rel=1e-6) and r.fit in (mc.SECOND, mc.FIRST_SECOND)
+    assert r.safety == 3.0 and r.inside(1.0)
+    # results alternating about 1 (no trend): s >= D, U = 3 s / D (error + s + miss); the fit (a h^2, weighted 1/h)
+    # recomputed with numpy's polyfit in x = h^2
+    f = np.array([1.0, 1.02, 0.99, 1.01])
+    r = mc.least_squares_uncertainty(h, f)
+    assert r.fit == mc.SECOND and r.std >= r.data_range == pytest.approx(0.01, rel=1e-12)
+    w = (1 / h) / np.sum(1 / h)
+    b, a = np.polyfit(h ** 2, f, 1, w=np.sqrt(w))
+    fit = a + b * h ** 2
+    assert r.weighted and r.exact == pytest.approx(a, rel=1e-10)
+    assert r.std == pytest.approx(np.sqrt(4 * np.sum(w * (f - fit) ** 2) / 2), rel=1e-8)
+    miss = abs(f[-1] - fit[-1])
+    assert r.uncertainty == pytest.approx(3 * r.std / r.data_range * (abs(b) * h[-1] ** 2 + r.std + miss), rel=1e-8)
+    c = mc.least_squares_uncertainty(h, [2.0] * 4)
+    assert c.fit == mc.CONSTANT and c.uncertainty == 0.0

@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from .fe_studies import CONTRASTS
-from .mesh_convergence import MONOTONE, grid_refinement, least_squares_uncertainty
+from .mesh_convergence import LS_ORDER_SCAN, MONOTONE, grid_refinement, least_squares_uncertainty
 
 STOPPED = "stopped"   # a shot of the sequence stopped (tasks.fe.fe_shot's record): refined up to it, no goal met
 
@@ -79,7 +79,9 @@ def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
     # estimate that stands where the three-mesh GCI finds no asymptotic range (mesh_convergence)
     if upto >= 4:
         ls = least_squares_uncertainty(1.0 / np.asarray(across[:upto], float), f[:upto])
-        ls_cols = {"ls_fit": ls.fit, "ls_order": ls.order, "ls_value": ls.value, "ls_exact": ls.exact,
+        # the free fit's order where the data have one (not at a bound of its scan)
+        ls_order = ls.order if LS_ORDER_SCAN[0] + 1e-6 < ls.order < LS_ORDER_SCAN[1] - 1e-6 else nan
+        ls_cols = {"ls_fit": ls.fit, "ls_order": ls_order, "ls_value": ls.value, "ls_exact": ls.exact,
                    "ls_uncertainty": ls.uncertainty, "ls_uncertainty_relative": ls.relative}
     else:
         ls_cols = {"ls_fit": "", "ls_order": nan, "ls_value": nan, "ls_exact": nan, "ls_uncertainty": nan,
@@ -104,6 +106,7 @@ def convergence_rows(shots: pd.DataFrame, paper_depth: dict, goal_depth, goal_co
     for hole, g in shots.groupby("pilot_hole", sort=False):
         t = _hole_convergence(g, paper_depth, goal_depth, goal_contrast)
         t.insert(0, "pilot_hole", hole)
+        t.insert(1, "domain", g.domain.iloc[0])   # one for the whole study (shot_rows)
         frames.append(t)
     return pd.concat(frames, ignore_index=True)
 
@@ -180,7 +183,7 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
         relative = quantity == "depth_m"
         goal = goal_depth if relative else goal_contrast
         paper = float(g.paper_simulated.iloc[0])
-        row = {"quantity": quantity, "case": case, "velocity_ms": v,
+        row = {"quantity": quantity, "case": case, "velocity_ms": v, "domain": g.domain.iloc[0],
                **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)}}
         if np.all(np.isfinite(f)):
             r = grid_refinement(f, ratio)
@@ -213,9 +216,9 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
 
 def side_of_one(low, high) -> str:
     """Where a study's depth ratios, ``low`` to ``high`` over every mesh and hole, lie against 1 (the paper's ranking:
-    the ratio above 1), said of a range without a limit."""
+    the ratio above 1): the words of a contrast's ``side_of_1`` column."""
     return ("above 1 on every mesh and hole" if low > 1 else "below 1 on every mesh and hole" if high < 1
-            else "on both sides of 1")
+            else "on both sides of 1" if low < 1 < high else "reaching 1")
 
 
 def ranking(ratio, band) -> str:

@@ -1,6 +1,6 @@
 """The limit of a mesh-dependent result as the element size h goes to zero.
 
-Two estimators, both pure (arrays in, a frozen record out):
+Three estimators, all pure (arrays in, a frozen record out):
 
 - `size_regression`: a straight line f(h) = f0 + b h fitted by least squares to results on many meshes,
   f0 with its Student-t interval. It assumes the error is first order in h over the sampled range (the
@@ -13,6 +13,9 @@ Two estimators, both pure (arrays in, a frozen record out):
   Richardson extrapolation, the GCI of the finest mesh, and, with a fourth mesh, the same from the coarser three
   and the asymptotic-range check GCI_coarse / (r^p GCI_fine) ~ 1. It assumes a smooth, monotone error
   expansion in h (the erosion-free target's), which the checks test.
+- `least_squares_uncertainty`: after Eça & Hoekstra (J. Comput. Phys. 262, 2014), the uncertainty of the finest
+  mesh's result from a least-squares fit of the error over four or more meshes of any ratios, with a penalty where
+  the results scatter as much as they trend: the estimate that stands where the GCI finds no asymptotic range.
 
 The mean of results over meshes of nearly one size measures their scatter, not the discretisation error.
 """
@@ -143,9 +146,11 @@ def grid_refinement(f, ratio, safety=1.25):
 
 
 # ---------------------------------------------------------------- least-squares uncertainty (Eça & Hoekstra 2014)
-FREE, FIRST, SECOND, FIRST_SECOND = "p free", "p = 1", "p = 2", "p = 1 and 2"
+FREE, FIRST, SECOND, FIRST_SECOND, CONSTANT = "p free", "p = 1", "p = 2", "p = 1 and 2", "constant"
 _TERMS = {FIRST: (1.0,), SECOND: (2.0,), FIRST_SECOND: (1.0, 2.0)}
 LS_ORDER_RANGE = (0.5, 2.1)   # the free fit's order within it, with a small scatter: the safety factor 1.25
+LS_ORDER_SCAN = (0.01, 12.0)  # the free order is sought in this range
+LS_ORDER_HIGH = 2.0           # a free order above it gives way to the fixed orders 2 and 1 + 2 (below 0.5: 1, 2, 1 + 2)
 
 
 @dataclass(frozen=True)
@@ -153,14 +158,15 @@ class LeastSquaresUncertainty:
     """The numerical uncertainty of the finest mesh's result from a least-squares fit of results on >= 4 meshes
     (the procedure of Eça & Hoekstra, J. Comput. Phys. 262, 2014)."""
     n: int
-    fit: str              # the error expansion selected: FREE, FIRST, SECOND or FIRST_SECOND
+    fit: str              # the error expansion selected: FREE, FIRST, SECOND, FIRST_SECOND or CONSTANT
     weighted: bool        # the fit weighted towards the fine meshes (weights 1/h) had the smaller standard deviation
-    order: float          # the observed order of the free fit (whichever expansion is selected)
+    order: float          # the observed order of the free fit, whichever expansion is selected (a scan bound, 0.01
+                          # or 12, where the data have none)
     exact: float          # the selected fit's value at h = 0
     error: float          # its error estimate of the finest mesh's result, |fit(h_fine) - fit(0)|
     std: float            # the fit's standard deviation (n - parameters degrees of freedom)
     data_range: float     # (max f - min f) / (n - 1)
-    safety: float         # 1.25 or 3
+    safety: float         # 1.25 or 3 (where s >= D the factor is 3 s / D on error + s + miss instead)
     value: float          # the finest mesh's result
     uncertainty: float    # U: the interval value +- U is to hold the exact solution (about 95 %)
     relative: float       # U / |value|
@@ -199,7 +205,7 @@ def _free_fit(h, f, w):
     from scipy.optimize import minimize_scalar
 
     hs = h / h.max()   # scaled sizes: the coefficient a stays of the order of the results
-    grid = np.linspace(0.01, 12.0, 600)
+    grid = np.linspace(*LS_ORDER_SCAN, 600)
     k = int(np.argmin(_line_residual(hs[None, :] ** grid[:, None], f, w)))
     lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
     cost = lambda p: float(_line_residual(hs ** p, f, w))
@@ -209,23 +215,25 @@ def _free_fit(h, f, w):
 
 
 def least_squares_uncertainty(h, f):
-    """Eça & Hoekstra's (2014) uncertainty of the finest mesh's result from results ``f`` on >= 4 meshes of sizes
-    ``h`` (any unit, refined by any ratios).
+    """The uncertainty of the finest mesh's result from results ``f`` on >= 4 meshes of sizes ``h`` (any unit, any
+    ratios), after Eça & Hoekstra (2014), by these rules:
 
-    The error is fitted in the least-squares sense, unweighted and weighted towards the fine meshes (weights
-    1/h), the one of smaller standard deviation kept: first f = f0 + a h^p with p free; where p falls outside
-    0.5..2.1 the expansions of fixed orders (a h, a h^2, a h + b h^2) take its place, the one of smallest standard
-    deviation selected (the procedure does so below 0.5; above 2.1 this implementation does too, since a free
-    order fitted to four meshes with one degree of freedom reached 4-12 on noisy second-order data and its tiny
-    error estimate missed the limit in a sixth of draws). The error estimate of the finest result is
-    |fit(h_fine) - f0|. With the data range D = (max f - min f) / (n - 1) and the fit's standard deviation s
-    (n - parameters degrees of freedom): where s < D, U = Fs error + s + |f_fine - fit(h_fine)|, Fs = 1.25 for the
-    free fit with 0.5 <= p < 2.1, else 3; where s >= D (the scatter as large as the trend),
-    U = 3 s / D (error + s + |f_fine - fit(h_fine)|). Results all equal (D = 0) have U = 0.
+    - the error is fitted in the least-squares sense, unweighted and weighted towards the fine meshes (weights
+      1/h), the fit of smaller standard deviation kept (n - parameters degrees of freedom): first f = f0 + a h^p
+      with p free (scanned over 0.01..12);
+    - where that p is below 0.5, the expansions of fixed orders a h, a h^2 and a h + b h^2 take its place; where
+      it is above 2, a h^2 and a h + b h^2 (the free order is then not trusted); the one of smallest standard
+      deviation is selected;
+    - the error estimate of the finest result is |fit(h_fine) - f0|;
+    - with the data range D = (max f - min f) / (n - 1) and the standard deviation s: where s < D,
+      U = Fs error + s + |f_fine - fit(h_fine)|, Fs = 1.25 where the free order lies in 0.5..2.1, else 3; where
+      s >= D (the scatter as large as the trend), U = 3 s / D (error + s + |f_fine - fit(h_fine)|);
+    - results all equal (D = 0): U = 0 (fit CONSTANT).
 
     Four meshes refined by 1.25 span sizes of 2 to 1 only: the order is then poorly determined. On first-order
     data with a noise of a tenth of the finest mesh's error, U held the limit in about 70 % of draws; on
-    second-order data with a noise of 0.3-1 times it, in 96-99 % (tests)."""
+    second-order data with a noise of 0.3-1 times it, in 96-99 % (tests). An order far below 0.5 is beyond the
+    fixed expansions: on an exact law of order 0.2, U is about 0.7 of the finest mesh's true error."""
     h, f = np.asarray(h, float), np.asarray(f, float)
     if h.shape != f.shape or h.ndim != 1 or h.size < 4 or not (np.all(np.isfinite(f)) and np.all(h > 0)):
         raise ValueError(f"least_squares_uncertainty: {h.size} meshes; allowed: >= 4 finite results at sizes h > 0")
@@ -236,7 +244,7 @@ def least_squares_uncertainty(h, f):
     D = float((f.max() - f.min()) / (n - 1))
     if D == 0.0:
         v = float(f[fine])
-        return LeastSquaresUncertainty(n, FREE, False, float("nan"), v, 0.0, 0.0, 0.0, 1.25, v, 0.0, 0.0)
+        return LeastSquaresUncertainty(n, CONSTANT, False, float("nan"), v, 0.0, 0.0, 0.0, 1.25, v, 0.0, 0.0)
     weights = {False: np.full(n, 1.0 / n), True: (1.0 / h) / np.sum(1.0 / h)}
     best = None
     for weighted, w in weights.items():
@@ -245,9 +253,12 @@ def least_squares_uncertainty(h, f):
         if best is None or cand[0] < best[0]:
             best = cand
     order = best[3]
-    if not LS_ORDER_RANGE[0] <= order < LS_ORDER_RANGE[1]:
+    high = order > LS_ORDER_HIGH * (1 + 1e-6)   # above 2 by more than the scan's precision
+    if order < LS_ORDER_RANGE[0] or high:
         best = None
         for name, exps in _TERMS.items():
+            if high and name == FIRST:
+                continue
             for weighted, w in weights.items():
                 f0, _, fit = _linear_fit(h / h.max(), f, w, exps)
                 cand = (_std(f, fit, w, 1 + len(exps)), name, weighted, order, f0, fit)
@@ -257,7 +268,7 @@ def least_squares_uncertainty(h, f):
     error = abs(float(fit[fine]) - f0)
     miss = abs(float(f[fine] - fit[fine]))
     if s < D:
-        safety = 1.25 if name == FREE and LS_ORDER_RANGE[0] <= order < LS_ORDER_RANGE[1] else 3.0
+        safety = 1.25 if LS_ORDER_RANGE[0] <= order < LS_ORDER_RANGE[1] else 3.0
         U = safety * error + s + miss
     else:
         safety = 3.0

@@ -27,6 +27,7 @@ from ..fe_studies import window_summary
 from ..io import task, write_csv
 from .fe import scene_shot
 
+
 @task
 def fe_window_study(inputs, outputs, params):
     """DO1 with the moving window and with the whole domain, ``members`` realisations each."""
