@@ -56,6 +56,12 @@ def test_the_study_recovers_the_limits_orders_and_goals_of_an_exact_error_law():
     # the ranking on the limits: DO (3.3) deeper than CRH 4.5 (3.1) than CRH 3 (3.0), by more than the bands
     ratios = holes[holes.quantity == "depth_ratio"]
     assert (ratios.ranking == "holds").all() and (ratios.side_of_1 == "above 1 on every mesh and hole").all()
+    # the least-squares hull over the holes: each hole's finest value +- U, here U = 1.25 x its error, above 1
+    for r in ratios.itertuples():
+        g = conv[(conv.case == r.case) & (conv.velocity_ms == r.velocity_ms)]
+        assert r.ls_holes == 3 and r.ls_low == pytest.approx((g.ls_value - g.ls_uncertainty).min(), rel=1e-12)
+        assert r.ls_high == pytest.approx((g.ls_value + g.ls_uncertainty).max(), rel=1e-12)
+        assert r.ls_ranking == "holds at every hole" and r.ls_low > 1
     assert (holes[holes.quantity == "depth_m"].ranking == "").all()
     cost = grid_study.cost_rows(s)
     assert list(cost.elements_across) == sorted(ACROSS.values()) and (cost.shots == 18).all()
@@ -121,6 +127,10 @@ def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():
     assert at.loc["DO/CRH 4.5", "ls_fit"] != "" and np.isfinite(at.loc["DO/CRH 4.5", "ls_uncertainty"])
     holes = grid_study.hole_rows(conv, 0.01, 0.01).set_index(["case", "velocity_ms"])
     assert holes.loc[("crh3", 500.0), "meshes_stopped"] and not holes.loc[("crh3", 500.0), "goal_met"]
+    # a hole without a least-squares interval (three meshes ran): no hull, the ranking on it undecided
+    assert holes.loc[("crh3", 500.0), "ls_holes"] == 2 and np.isnan(holes.loc[("crh3", 500.0), "ls_low"])
+    assert holes.loc[("CRH 4.5/CRH 3", 500.0), "ls_ranking"] == "undecided"
+    assert holes.loc[("DO/CRH 4.5", 500.0), "ls_ranking"] == "holds at every hole"
     assert not holes.loc[("crh3", 1200.0), "meshes_stopped"]
     # stopped on the second mesh: fewer than three meshes before it
     second = sorted(ACROSS.values())[1]
@@ -153,6 +163,11 @@ def test_without_a_limit_the_hole_rows_give_the_range_of_every_value():
     assert not holes.limit_found.all()          # the scatter defeats the refinement somewhere
     ratios = holes[holes.quantity == "depth_ratio"]
     assert (ratios[~ratios.limit_found].ranking == "undecided").all()
+    # the scatter widens the least-squares intervals: a hull that reaches below 1 leaves the ranking undecided
+    for r in ratios.itertuples():
+        assert r.ls_ranking == ("holds at every hole" if r.ls_low > 1 else "fails at every hole" if r.ls_high < 1
+                                else "undecided")
+    assert (ratios.ls_high - ratios.ls_low > ratios.values_max - ratios.values_min).all()
     # an infinite band holds no paper value, though the paper's (the law's limits here) lie within it
     inf_band = holes[np.isinf(holes.uncertainty) & np.isfinite(holes.at_zero_hole)]
     assert len(inf_band) > 0 and not inf_band.paper_inside.any()

@@ -150,8 +150,10 @@ def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_b
     paper's increment (2 points, nothing calibrated: agreement is a reproduction) and against 1 (the ranking)."""
     from penetration.diff import erosion_free_rows
     refs = load_reference(REF)
+    from penetration.grid_study import ranking as study_ranking
     row = {"quantity": "depth_ratio", "case": "DO/CRH 4.5", "velocity_ms": 800.0, "at_zero_hole": ratio,
-           "uncertainty": band, "mesh_status_all_asymptotic": True, "hole_status": "asymptotic"}
+           "uncertainty": band, "mesh_status_all_asymptotic": True, "hole_status": "asymptotic",
+           "ranking": study_ranking(ratio, band)}   # the study's verdict column (grid_study.hole_rows)
     eroding = [{"contrast": "DO/CRH 4.5", "velocity_ms": 800, "ratio_at_zero_size": 1.147, "interval_low": 1.097,
                 "interval_high": 1.197}]
     table = [{"contrast": "DO/CRH 4.5", "velocity": 800, "cavity_ratio": 1.031, "analytic_stated_S_ratio": 1.014}]
@@ -182,13 +184,16 @@ def test_erosion_free_depth_rows_judge_the_stated_depth_on_its_band_and_call_a_c
 
 
 def test_erosion_free_rows_without_a_limit_give_the_spread_and_decide_nothing():
-    """A zero-hole row with no limit (the study's refinement found none): the diff gives the median and range of
-    every mesh's and hole's value, never a verdict, for the increment, the ranking and the depth."""
+    """A zero-hole row with no limit (the study's refinement found none) and no least-squares interval at some hole:
+    the diff gives the median and range of every mesh's and hole's value, never a verdict, for the increment, the
+    ranking and the depth."""
     from penetration.diff import erosion_free_depth_rows, erosion_free_rows
     refs = load_reference(REF)
     row = {"quantity": "depth_ratio", "case": "CRH 4.5/CRH 3", "velocity_ms": 1200.0, "at_zero_hole": 1.02,
            "uncertainty": float("inf"), "limit_found": "False", "values": 12, "values_min": 1.072,
-           "values_median": 1.10, "values_max": 1.16, "mesh_status_all_asymptotic": False, "hole_status": "oscillatory"}
+           "values_median": 1.10, "values_max": 1.16, "mesh_status_all_asymptotic": False, "hole_status": "oscillatory",
+           "side_of_1": "above 1 on every mesh and hole", "ranking": "undecided", "ls_low": "", "ls_high": "",
+           "ls_ranking": "undecided"}
     eroding = [{"contrast": "CRH 4.5/CRH 3", "velocity_ms": 1200, "ratio_at_zero_size": 0.95, "interval_low": 0.9,
                 "interval_high": 1.0}]
     table = [{"contrast": "CRH 4.5/CRH 3", "velocity": 1200, "cavity_ratio": 1.041, "analytic_stated_S_ratio": 1.03}]
@@ -199,3 +204,28 @@ def test_erosion_free_rows_without_a_limit_give_the_spread_and_decide_nothing():
     (depth,) = erosion_free_depth_rows(refs, [{**row, "quantity": "depth_m", "case": "crh3", "values_min": 5.2,
                                                 "values_median": 5.5, "values_max": 6.6}], [])
     assert depth.status == "undecided" and depth.ours == 5.5 and "5.200 m to 6.600 m" in depth.case
+
+
+@pytest.mark.parametrize("low, high, ls_ranking, inc_status, rank_status",
+                         [(1.03, 1.09, "holds at every hole", "undecided", "reproduced"),
+                          (1.08, 1.20, "holds at every hole", "deviates", "reproduced"),
+                          (0.98, 1.09, "undecided", "undecided", "undecided"),
+                          (0.90, 0.98, "fails at every hole", "deviates", "deviates")])
+def test_erosion_free_rows_without_a_limit_are_judged_on_the_holes_least_squares_hull(low, high, ls_ranking,
+                                                                                        inc_status, rank_status):
+    """No limit, but every hole has a least-squares interval: the increment is judged on their hull (the paper's
+    CRH 4.5/CRH 3 at 1200 m/s, +5.9 %, outside the hull: deviates; inside: undecided) and the ranking on the
+    study's ls_ranking (above 1 at every hole: reproduced, at the holes run); the depth likewise on its hull."""
+    from penetration.diff import erosion_free_depth_rows, erosion_free_rows
+    refs = load_reference(REF)
+    row = {"quantity": "depth_ratio", "case": "CRH 4.5/CRH 3", "velocity_ms": 1200.0, "at_zero_hole": 1.02,
+           "uncertainty": float("inf"), "limit_found": "False", "values": 12, "values_min": 1.072,
+           "values_median": 1.10, "values_max": 1.16, "side_of_1": "above 1 on every mesh and hole",
+           "ranking": "undecided", "ls_low": str(low), "ls_high": str(high), "ls_ranking": ls_ranking}
+    inc, rank = erosion_free_rows(refs, [row], [], [])
+    assert refs["table3.inc_crh3.1200.crh45"].value == pytest.approx(5.87, abs=1e-9)
+    assert inc.status == inc_status and rank.status == rank_status
+    assert f"{low:.3f} to {high:.3f} (at the holes run)" in inc.case and "(at the holes run)" in rank.case
+    depth = {**row, "quantity": "depth_m", "case": "crh3", "values_median": 5.5, "ls_low": "5.0", "ls_high": "6.0"}
+    (d,) = erosion_free_depth_rows(refs, [depth], [])
+    assert d.status == "deviates" and "5.000 to 6.000 m" in d.case   # the paper's 7.86 m outside the hull

@@ -273,6 +273,9 @@ def ranking(rows):
     if all(found(r) for r in rows.itertuples()):
         verdicts = set(rows.ranking)
         return verdicts.pop() if len(verdicts) == 1 and "undecided" not in verdicts else "is undecided"
+    ls = set(rows.ls_ranking)
+    if len(ls) == 1 and (verdict := ls.pop()) != "undecided":
+        return f"{verdict} run, on the least-squares intervals of the meshes (no limit under refinement)"
     sides = set(rows.side_of_1)
     return f"is undecided without a limit ({sides.pop() if len(sides) == 1 else 'on both sides of 1'})"
 

@@ -519,6 +519,13 @@ def _limit_found(r) -> bool:
     return str(r.get("limit_found", True)) == "True" and math.isfinite(float(r["uncertainty"]))
 
 
+def _hull(r):
+    """The hull of the least-squares intervals (finest value +- U) over the holes of a row without a limit, (low,
+    high), or None where a hole has none (a CSV's missing value comes as an empty string)."""
+    low, high = (float(r.get(k) or "nan") for k in ("ls_low", "ls_high"))
+    return (low, high) if math.isfinite(low) and math.isfinite(high) else None
+
+
 def _spread(r, fmt) -> str:
     """The values of every mesh and hole of a row without a limit: their range and median (not an interval)."""
     return (f"{int(r['values'])} values over the meshes and pilot holes {fmt.format(float(r['values_min']))} to "
@@ -538,11 +545,15 @@ def erosion_free_depth_rows(refs, limits, calibrated):
         v, nose = int(r["velocity_ms"]), r["case"]
         ref = refs[f"table3.sim.{v}.{nose}"]
         if not _limit_found(r):
-            ours = float(r["values_median"])
-            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f} m')}; Table 1 HJC "
-                    f"as stated; a study)")
+            ours, hull = float(r["values_median"]), _hull(r)
+            ls = (f"least-squares intervals of the holes' finest depths {hull[0]:.3f} to {hull[1]:.3f} m (at the holes "
+                  f"run); " if hull else "")
+            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f} m')}; {ls}Table 1 "
+                    f"HJC as stated; a study)")
+            status = (interval_status(ref.value, hull[0], hull[1], ref.tol * abs(ref.value), False) if hull
+                      else "undecided")
             rows.append(Row(ref.item, ref.quantity + " on the erosion-free target", case, ref.value, ours,
-                            _rel(ref.value, ours), ref.tol, "undecided"))
+                            _rel(ref.value, ours), ref.tol, status))
             continue
         ours, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: {ours:.3f} +- {band:.3f} m; "
@@ -595,14 +606,23 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
         ref = refs[f"{prefix}.{v}.{nose}"]
         beside = _beside(erode.get((name, v)), others.get((name, v)))
         if not _limit_found(r):
+            # no limit: judged on the hull of the holes' least-squares intervals, where every hole has one (a bound
+            # at the holes run, not at zero hole), else undecided
             lo, med, hi = (float(r[k]) for k in ("values_min", "values_median", "values_max"))
-            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f}')} as ratios; "
+            hull = _hull(r)
+            ls = (f"least-squares intervals of the holes' finest values {hull[0]:.3f} to {hull[1]:.3f} (at the holes "
+                  f"run); " if hull else "")
+            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f}')} as ratios; {ls}"
                     f"{'; '.join(beside + [''])}Table 1 HJC; a study)")
+            status = (interval_status(ref.value, 100 * (hull[0] - 1), 100 * (hull[1] - 1), 2.0, False) if hull
+                      else "undecided")
             rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value,
-                            100 * (med - 1), _rel(ref.value, 100 * (med - 1)), 2.0 / abs(ref.value), "undecided"))
+                            100 * (med - 1), _rel(ref.value, 100 * (med - 1)), 2.0 / abs(ref.value), status))
+            ranking = {"holds at every hole": "reproduced", "fails at every hole": "deviates"}.get(
+                r.get("ls_ranking"), "undecided")
             rows.append(Row(ref.item, f"{name} above 1 (the paper's ranking) on the erosion-free target",
-                            f"{v} m/s (no limit; ratios {lo:.3f} to {hi:.3f}: {r['side_of_1']}; a study)", 1.0, med,
-                            _rel(1.0, med), 0.0, "undecided"))
+                            f"{v} m/s (no limit; ratios {lo:.3f} to {hi:.3f}: {r['side_of_1']}; {ls}a study)", 1.0,
+                            med, _rel(1.0, med), 0.0, ranking))
             continue
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         ours, lo, hi = 100 * (ratio - 1), 100 * (ratio - band - 1), 100 * (ratio + band - 1)

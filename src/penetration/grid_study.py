@@ -183,6 +183,15 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
         relative = quantity == "depth_m"
         goal = goal_depth if relative else goal_contrast
         paper = float(g.paper_simulated.iloc[0])
+        # the least-squares intervals of the holes' finest values (value +- U), their hull where every hole has one:
+        # what the study can bound when it finds no limit (at the holes run, not at zero hole)
+        lo_ls, hi_ls = (g.ls_value - g.ls_uncertainty).to_numpy(), (g.ls_value + g.ls_uncertainty).to_numpy()
+        every = bool(np.all(np.isfinite(lo_ls) & np.isfinite(hi_ls)))
+        ls = {"ls_holes": int(np.sum(np.isfinite(g.ls_uncertainty.to_numpy()))),
+              "ls_low": float(lo_ls.min()) if every else float("nan"),
+              "ls_high": float(hi_ls.max()) if every else float("nan")}
+        ls["ls_ranking"] = ("" if relative else "holds at every hole" if every and ls["ls_low"] > 1
+                            else "fails at every hole" if every and ls["ls_high"] < 1 else "undecided")
         row = {"quantity": quantity, "case": case, "velocity_ms": v, "domain": g.domain.iloc[0],
                **{f"zero_size_at_hole_{h:g}": x for h, x in zip(holes, f)}}
         if np.all(np.isfinite(f)):
@@ -209,6 +218,7 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
                      # one, else undecided, with the side of 1 its values lie on
                      "ranking": "" if relative else ranking(hole["at_zero_hole"], band) if limit else "undecided",
                      "side_of_1": "" if relative else side_of_one(spread["values_min"], spread["values_max"]),
+                     **ls,
                      "paper_simulated": paper,
                      "paper_inside": bool(limit and np.isfinite(paper) and abs(paper - hole["at_zero_hole"]) <= band)})
     return pd.DataFrame(rows)
