@@ -74,7 +74,8 @@ HOLE_STYLES = ("-", "--", ":", "-.")
 def grid_convergence_figure(conv, holes, path, dpi):
     """The erosion-free target's grid convergence, one column per velocity: depths (top row) and nose contrasts as
     depth gains (middle row) against the element size, one line per pilot hole, with each hole's Richardson
-    extrapolation at zero size and the finest mesh's GCI as its bar (hollow: not in the asymptotic range); the
+    extrapolation at zero size and the finest mesh's GCI as its bar (hollow: not in the asymptotic range), and the
+    finest value's least-squares (Eça-Hoekstra) interval as a bar between them (one per hole); the
     zero-size values against the pilot hole (bottom row: depths scaled by their zero-hole value, and the gains),
     extrapolated to zero hole with the larger of the hole's and the meshes' GCI as the bar; the paper's simulated
     values as crosses."""
@@ -104,6 +105,17 @@ def grid_convergence_figure(conv, holes, path, dpi):
                 if np.isfinite(r["paper_simulated"]):
                     ax.plot([h.max() + 0.7], [scale * (r["paper_simulated"] - offset)],
                             **{**PAPER_STYLE, "color": colors.get(r["case"], "gray")})
+            # each hole's least-squares interval of its finest value (thin bars right of the finest mesh), drawn
+            # inside the limits the values set: a bar wider than them runs off the axes
+            ax.autoscale_view()
+            lim = ax.get_ylim()
+            for r in rows:
+                u = r.get("ls_uncertainty", np.nan)
+                if np.isfinite(u):
+                    k = hole_sizes.index(r["pilot_hole"])
+                    ax.errorbar([1.6 + 0.5 * k], [scale * (r["ls_value"] - offset)], yerr=[scale * u],
+                                fmt="_", ms=5, elinewidth=0.9, capsize=0, color=colors.get(r["case"], "gray"))
+            ax.set_ylim(lim)
             if i == 0:
                 ax.set_title(f"{v:g} m/s")
             if i == 1:
@@ -155,8 +167,10 @@ def grid_convergence_figure(conv, holes, path, dpi):
                  f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius) "
                  f"at pilot holes of {', '.join(f'{x:g}' for x in hole_sizes)} of it (solid, dashed, dotted)\n"
                  "squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range, not an estimate); "
-                 "crosses: the paper's simulation (LS-DYNA with erosion)\nbottom: the zero-size values against the "
+                 "crosses: the paper's simulation (LS-DYNA with erosion)\nbars at 1.6-2.6 mm: each hole's finest value "
+                 "with its least-squares uncertainty (Eça & Hoekstra 2014, over the 4 meshes; cut at the axes)\n"
+                 "bottom: the zero-size values against the "
                  "pilot hole, extrapolated to zero hole; where the refinement finds no limit, each hole's median and "
                  "range over its meshes instead", fontsize=9)
-    fig.subplots_adjust(top=0.90, wspace=0.22, hspace=0.3)
+    fig.subplots_adjust(top=0.88, wspace=0.22, hspace=0.3)
     save(fig, path, dpi)
