@@ -180,6 +180,28 @@ def test_every_rule_declares_threads_resources_benchmark_and_log():
         assert r.script == "../scripts/run_task.py", f"rule {name}: script {r.script}"
 
 
+def test_a_rule_whose_task_resolves_its_scene_declares_the_inferred_noses():
+    """A task that resolves its scene (tasks.common.scene_from_inputs, through scene_shot or window_study too)
+    reads both inferred noses: its rule must declare them (`do1` and `fig4`, Snakefile's GEOMETRY_RESULTS), or the
+    job fails at its start. A rule that reads its scene file alone (its noses' names) is listed, and its task must
+    not resolve the scene."""
+    import inspect
+
+    from workflow_rules import loaded_rules
+
+    from penetration.io import TASKS
+    registered_tasks()
+    reads_file_only = {"fe_table3"}
+    for name, r in loaded_rules().items():
+        if "scene" not in r.input.keys():
+            continue
+        if name in reads_file_only:
+            source = inspect.getsource(TASKS[name])
+            assert not any(f in source for f in ("scene_from_inputs(", "scene_shot(", "window_study(")), name
+            continue
+        assert {"do1", "fig4"} <= set(r.input.keys()), f"rule {name} resolves its scene without both inferred noses"
+
+
 def test_no_rule_takes_the_whole_config_as_a_param():
     """Snakemake re-runs a job whose params changed: a rule holding the whole config would re-run (validation_fe:
     minutes) after any edit of it, a figure's dpi included. Rules take the sections their tasks read

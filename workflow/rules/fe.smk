@@ -52,7 +52,7 @@ rule calibrate_fe_do1:
 # The strength scale of an erosion-free scene's target (fe.strength_scale: calibrated) making the DO1 depth the
 # measured one, at one mesh (a calibration: its residual is written with it).
 rule calibrate_fe_strength_do1:
-    input: **task("tasks.fe"), do1="results/geometry/double_ogive_table4.json", reference=config["reference"],
+    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
            **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: json="results/fe/{profile}/{scene}/calibration_do1.json",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], shot=config["calibration"]["do1"],
