@@ -23,6 +23,7 @@ rule diff:
         contrast_table="figures/nose_contrasts_table.csv",
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
     params: erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
+            erosion_free_calibrated=study_input("figures/fe/erosion_free/calibrated.csv"),
             eroding=study_input("figures/fe/contrast_extrapolation.csv"),
     threads: 1
     resources: mem_mb=1000, runtime=5

@@ -92,8 +92,8 @@ def diff(inputs, outputs, params):
             + diff_rows.erosion_free_rows(refs, committed_study(params.erosion_free).to_dict("records"),
                                           committed_study(params.eroding).to_dict("records"),
                                           pd.read_csv(inputs.contrast_table).to_dict("records"))
-            # the DO1-calibrated depths (figures/fe/erosion_free/calibrated.csv) join once that study is committed
-            + diff_rows.erosion_free_depth_rows(refs, committed_study(params.erosion_free).to_dict("records"), []))
+            + diff_rows.erosion_free_depth_rows(refs, committed_study(params.erosion_free).to_dict("records"),
+                                                committed_study(params.erosion_free_calibrated).to_dict("records")))
     frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=diff_rows.COLUMNS)
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")
