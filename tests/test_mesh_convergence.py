@@ -157,3 +157,6 @@ def test_least_squares_distrusts_an_order_above_two_and_penalises_scatter_as_lar
     assert r.uncertainty == pytest.approx(3 * r.std / r.data_range * (abs(b) * h[-1] ** 2 + r.std + miss), rel=1e-8)
     c = mc.least_squares_uncertainty(h, [2.0] * 4)
     assert c.fit == mc.CONSTANT and c.uncertainty == 0.0
+    # the alternating results have no order: the free fit ends at a bound of its scan, which found_order withholds
+    assert r.order == pytest.approx(mc.LS_ORDER_SCAN[1], rel=1e-6) and np.isnan(r.found_order)
+    assert mc.least_squares_uncertainty(h, 1.0 + 0.05 * (h / h.max()) ** 3).found_order == pytest.approx(3.0, rel=1e-6)

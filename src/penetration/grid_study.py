@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from .fe_studies import CONTRASTS
-from .mesh_convergence import LS_ORDER_SCAN, MONOTONE, grid_refinement, least_squares_uncertainty
+from .mesh_convergence import MONOTONE, grid_refinement, least_squares_uncertainty
 
 STOPPED = "stopped"   # a shot of the sequence stopped (tasks.fe.fe_shot's record): refined up to it, no goal met
 
@@ -79,9 +79,7 @@ def _row(quantity, case, v, f, across, ratio, paper, goal, relative):
     # estimate that stands where the three-mesh GCI finds no asymptotic range (mesh_convergence)
     if upto >= 4:
         ls = least_squares_uncertainty(1.0 / np.asarray(across[:upto], float), f[:upto])
-        # the free fit's order where the data have one (not at a bound of its scan)
-        ls_order = ls.order if LS_ORDER_SCAN[0] + 1e-6 < ls.order < LS_ORDER_SCAN[1] - 1e-6 else nan
-        ls_cols = {"ls_fit": ls.fit, "ls_order": ls_order, "ls_value": ls.value, "ls_exact": ls.exact,
+        ls_cols = {"ls_fit": ls.fit, "ls_order": ls.found_order, "ls_value": ls.value, "ls_exact": ls.exact,
                    "ls_uncertainty": ls.uncertainty, "ls_uncertainty_relative": ls.relative}
     else:
         ls_cols = {"ls_fit": "", "ls_order": nan, "ls_value": nan, "ls_exact": nan, "ls_uncertainty": nan,

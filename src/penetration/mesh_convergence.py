@@ -174,6 +174,12 @@ class LeastSquaresUncertainty:
     def inside(self, x):
         return bool(abs(x - self.value) <= self.uncertainty)
 
+    @property
+    def found_order(self):
+        """The free fit's order where its scan found one inside LS_ORDER_SCAN, else nan (the data have none)."""
+        lo, hi = LS_ORDER_SCAN
+        return self.order if lo + 1e-6 < self.order < hi - 1e-6 else float("nan")
+
 
 def _linear_fit(h, f, w, exps):
     """Weighted least squares of f = f0 + sum_k a_k h^e_k: (f0, coefficients, the fitted values)."""
