@@ -316,3 +316,27 @@ def test_the_quasi_static_task_refines_each_hole_and_judges_the_limit_against_th
     assert t.loc[0.25, "status"] == "oscillatory"
     assert (t.loc[0.25, "judged_low_pa"], t.loc[0.25, "judged_high_pa"]) == (330e6, 400e6)
     assert not bool(t.loc[0.25, "within_band"])            # 330 MPa is 34 % below 500
+
+
+def test_a_study_piece_keeps_every_shot_summary_and_refuses_a_partial_or_forced_rebuild(tmp_path):
+    """A piece of the grid study is a record of its shots' summaries, read back unchanged by the convergence; a piece
+    with fewer shots than its mesh has (a committed piece forced: the rule then has none) is refused, and nothing is
+    written."""
+    from types import SimpleNamespace
+
+    from penetration.io import load_json, write_json
+    from penetration.tasks.fe_erosion_free import fe_erosion_free_piece
+
+    shots = []
+    for k in range(3):
+        path = tmp_path / f"shot{k}.json"
+        write_json({"nose": "crh3", "velocity": 500.0 + k, "depth": 1.0 + 0.1 * k}, path)
+        shots.append(str(path))
+    out = SimpleNamespace(json=str(tmp_path / "piece.json"))
+    fe_erosion_free_piece(SimpleNamespace(shots=shots), out, SimpleNamespace(piece="free819", expected=3))
+    piece = load_json(out.json)
+    assert piece["piece"] == "free819" and piece["shots"] == [load_json(p) for p in shots]
+    other = SimpleNamespace(json=str(tmp_path / "forced.json"))
+    with pytest.raises(ValueError, match="0 shots given, 3 expected"):
+        fe_erosion_free_piece(SimpleNamespace(shots=[]), other, SimpleNamespace(piece="free819", expected=3))
+    assert not (tmp_path / "forced.json").exists()

@@ -277,12 +277,36 @@ use rule fe_fig12 as fe_contrast_extrapolation with:
     log: "results/logs/fe_contrast_extrapolation.log",
 
 
+# The study in pieces: one committed record per mesh (every shot's summary at that profile) and one of the eroding
+# level's Table 3 shots at its default mesh (the per-shot time the study's is set against). A piece is a record: once
+# committed it is read, never rebuilt, so a study longer than a session resumes from its committed pieces on a fresh
+# clone (delete a piece to recompute it). A missing piece runs its shots.
+FREE_PIECES = {**{p: [path.format(profile=p) for scene in config["fe_erosion_free"]["scenes"] for path in fe_shots(scene)]
+                  for p in FREE_PROFILES},
+               "eroding_full": [path.format(profile="full") for path in fe_shots("table3")]}
+
+
+def free_piece_shots(w):
+    """The shots of a piece that is not committed yet (none for a committed piece: it is a record)."""
+    return [] if Path(f"figures/fe/erosion_free/pieces/{w.piece}.json").exists() else FREE_PIECES[w.piece]
+
+
+rule fe_erosion_free_piece:
+    input: **task("tasks.fe_erosion_free"), shots=free_piece_shots,
+    output: json="figures/fe/erosion_free/pieces/{piece}.json",
+    params: piece=lambda w: w.piece, expected=lambda w: len(FREE_PIECES[w.piece]),
+    wildcard_constraints: piece="|".join(FREE_PIECES),
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_erosion_free_piece_{piece}.tsv"
+    log: "results/logs/fe_erosion_free_piece_{piece}.log",
+    script: "../scripts/run_task.py"
+
+
 use rule fe_fig12 as fe_erosion_free_convergence with:
     input: **task("tasks.fe_erosion_free"), reference=config["reference"],
-           shots=[path.format(profile=p) for scene in config["fe_erosion_free"]["scenes"] for p in FREE_PROFILES
-                  for path in fe_shots(scene)],
-           # the eroding level's Table 3 shots at its default mesh: the per-shot time the study's is set against
-           eroding=[path.format(profile="full") for path in fe_shots("table3")],
+           pieces=[f"figures/fe/erosion_free/pieces/{p}.json" for p in FREE_PROFILES],
+           eroding="figures/fe/erosion_free/pieces/eroding_full.json",
     output: png=report("figures/fe/erosion_free/convergence.png", caption="../report/captions/fe_erosion_free_convergence.rst", category="Finite-element level"),
             csv="figures/fe/erosion_free/convergence.csv", depths="figures/fe/erosion_free/convergence_shots.csv",
             holes="figures/fe/erosion_free/convergence_holes.csv", cost="figures/timing/fe_erosion_free_convergence.csv",

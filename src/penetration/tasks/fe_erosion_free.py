@@ -17,17 +17,28 @@ from .common import calibration_row
 
 
 @task
+def fe_erosion_free_piece(inputs, outputs, params):
+    """One piece of the study: the summaries of its shots (one mesh profile, or the eroding level's Table 3 at its
+    default mesh), a committed record the convergence reads. A committed piece is not rebuilt: the rule then has no
+    shots, and forcing it is refused (delete the piece to recompute it)."""
+    if len(inputs.shots) != params.expected:
+        raise ValueError(f"piece {params.piece}: {len(inputs.shots)} shots given, {params.expected} expected (a "
+                         f"committed piece is a record: delete {outputs.json} to recompute it)")
+    write_json({"piece": params.piece, "shots": [load_json(p) for p in inputs.shots]}, outputs.json)
+
+
+@task
 def fe_erosion_free_convergence(inputs, outputs, params):
     """The study's tables (convergence per depth and contrast, each shot, each mesh's cost) and its figure."""
     refs = load_reference(inputs.reference)
     paper = {(float(v), n): refs[f"table3.sim.{v}.{n}"].si for v in VELOCITIES for n in TABLE3_NOSES}
-    shots = grid_study.shot_rows([load_json(p) for p in inputs.shots], params.across)
+    shots = grid_study.shot_rows([s for p in inputs.pieces for s in load_json(p)["shots"]], params.across)
     conv = grid_study.convergence_rows(shots, paper, params.goal_depth, params.goal_contrast)
     write_csv(shots, outputs.depths)
     write_csv(conv, outputs.csv)
     holes = grid_study.hole_rows(conv, params.goal_depth, params.goal_contrast)
     write_csv(holes, outputs.holes)
-    eroding = [s for s in map(load_json, inputs.eroding) if float(s["velocity"]) in set(shots.velocity_ms)]
+    eroding = [s for s in load_json(inputs.eroding)["shots"] if float(s["velocity"]) in set(shots.velocity_ms)]
     write_csv(grid_study.cost_rows(shots, eroding, params.eroding_across), outputs.cost)
     grid_convergence_figure(conv, holes, outputs.png, params.dpi)
 
