@@ -333,10 +333,10 @@ def test_a_study_piece_keeps_every_shot_summary_and_refuses_a_partial_or_forced_
         write_json({"nose": "crh3", "velocity": 500.0 + k, "depth": 1.0 + 0.1 * k}, path)
         shots.append(str(path))
     out = SimpleNamespace(json=str(tmp_path / "piece.json"))
-    fe_erosion_free_piece(SimpleNamespace(shots=shots), out, SimpleNamespace(piece="free819", expected=3))
+    fe_erosion_free_piece(SimpleNamespace(shots=shots), out, SimpleNamespace(piece="free819/table3_erosion_free", expected=3))
     piece = load_json(out.json)
-    assert piece["piece"] == "free819" and piece["shots"] == [load_json(p) for p in shots]
+    assert piece["piece"] == "free819/table3_erosion_free" and piece["shots"] == [load_json(p) for p in shots]
     other = SimpleNamespace(json=str(tmp_path / "forced.json"))
     with pytest.raises(ValueError, match="0 shots given, 3 expected"):
-        fe_erosion_free_piece(SimpleNamespace(shots=[]), other, SimpleNamespace(piece="free819", expected=3))
+        fe_erosion_free_piece(SimpleNamespace(shots=[]), other, SimpleNamespace(piece="free819/table3_erosion_free", expected=3))
     assert not (tmp_path / "forced.json").exists()

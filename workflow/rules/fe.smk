@@ -277,13 +277,14 @@ use rule fe_fig12 as fe_contrast_extrapolation with:
     log: "results/logs/fe_contrast_extrapolation.log",
 
 
-# The study in pieces: one committed record per mesh (every shot's summary at that profile) and one of the eroding
-# level's Table 3 shots at its default mesh (the per-shot time the study's is set against). A piece is a record: once
-# committed it is read, never rebuilt, so a study longer than a session resumes from its committed pieces on a fresh
-# clone (delete a piece to recompute it). A missing piece runs its shots.
-FREE_PIECES = {**{p: [path.format(profile=p) for scene in config["fe_erosion_free"]["scenes"] for path in fe_shots(scene)]
-                  for p in FREE_PROFILES},
-               "eroding_full": [path.format(profile="full") for path in fe_shots("table3")]}
+# The study in pieces: one committed record per mesh and scene (every shot's summary: six shots) and one of the
+# eroding level's Table 3 shots at its default mesh (the per-shot time the study's is set against), each
+# figures/fe/erosion_free/pieces/{profile}/{scene}.json. A piece is a record: once committed it is read, never rebuilt,
+# so a study longer than a session resumes from its committed pieces on a fresh clone (delete a piece to recompute
+# it). A missing piece runs its shots.
+FREE_PIECES = {**{f"{p}/{scene}": [path.format(profile=p) for path in fe_shots(scene)]
+                  for p in FREE_PROFILES for scene in config["fe_erosion_free"]["scenes"]},
+               "full/table3": [path.format(profile="full") for path in fe_shots("table3")]}
 
 
 def free_piece_shots(w):
@@ -305,8 +306,8 @@ rule fe_erosion_free_piece:
 
 use rule fe_fig12 as fe_erosion_free_convergence with:
     input: **task("tasks.fe_erosion_free"), reference=config["reference"],
-           pieces=[f"figures/fe/erosion_free/pieces/{p}.json" for p in FREE_PROFILES],
-           eroding="figures/fe/erosion_free/pieces/eroding_full.json",
+           pieces=[f"figures/fe/erosion_free/pieces/{piece}.json" for piece in FREE_PIECES if piece != "full/table3"],
+           eroding="figures/fe/erosion_free/pieces/full/table3.json",
     output: png=report("figures/fe/erosion_free/convergence.png", caption="../report/captions/fe_erosion_free_convergence.rst", category="Finite-element level"),
             csv="figures/fe/erosion_free/convergence.csv", depths="figures/fe/erosion_free/convergence_shots.csv",
             holes="figures/fe/erosion_free/convergence_holes.csv", cost="figures/timing/fe_erosion_free_convergence.csv",

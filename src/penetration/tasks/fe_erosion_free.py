@@ -18,8 +18,8 @@ from .common import calibration_row
 
 @task
 def fe_erosion_free_piece(inputs, outputs, params):
-    """One piece of the study: the summaries of its shots (one mesh profile, or the eroding level's Table 3 at its
-    default mesh), a committed record the convergence reads. A committed piece is not rebuilt: the rule then has no
+    """One piece of the study: the summaries of its shots (one scene at one mesh profile, or the eroding level's
+    Table 3 at its default mesh), a committed record the convergence reads. A committed piece is not rebuilt: the rule then has no
     shots, and forcing it is refused (delete the piece to recompute it)."""
     if len(inputs.shots) != params.expected:
         raise ValueError(f"piece {params.piece}: {len(inputs.shots)} shots given, {params.expected} expected (a "
