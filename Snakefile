@@ -145,6 +145,10 @@ STUDY_OUTPUTS = [
     "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
     "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
     "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",
+    # the cavity level calibrated on the laboratory shots, each fold scored out of sample
+    "figures/calibration_cavity_laboratory.csv", "figures/validation_cavity_laboratory.csv",
+    "figures/calibration_cavity_laboratory_grid.csv", "figures/timing/calibration_cavity_laboratory.csv",
+    "figures/do1_test.csv",
     # every level on the 25 development shots (the validated accuracy the command line reports), at both meshes
     *expand("figures/fe/{profile}/validation_levels.png", profile=["full", "ci"]),
     *expand("figures/timing/validation_levels_{profile}.csv", profile=["full", "ci"]),

@@ -46,9 +46,10 @@ LEVELS_EPILOG = (
     "trajectory; seconds per new concrete, tables cached per concrete and caliber), fe (2-D axisymmetric finite "
     "elements; minutes). S(fc) of the analytic and trajectory levels: --strength-law. The cavity and fe levels take "
     "the concrete of --root's config (Table 1's HJC set with the conventions of its concrete section), scale it to fc "
-    "(concrete.HJC_SCALING_RULE) and carry over the DO1 calibrations committed under --root "
-    "(figures/calibration_cavity_do1.csv, figures/fe/PROFILE/calibration_fe_do1.csv) unless --strength-scale or "
-    "--failure-strain is given. The fe level prints its estimated cost first and refuses a shot estimated above "
+    "(concrete.HJC_SCALING_RULE) and carry over the calibrations committed under --root: the cavity level's strength "
+    "scale fitted on the laboratory shots (figures/calibration_cavity_laboratory.csv; --calibration do1 takes DO1's), "
+    "the fe level's failure strain fitted on DO1 (figures/fe/PROFILE/calibration_fe_do1.csv), unless --strength-scale "
+    "or --failure-strain is given. The fe level prints its estimated cost first and refuses a shot estimated above "
     "--max-minutes. Every answer comes with its level's validated accuracy on the development shots and a warning "
     "for each quantity outside their range. Progress goes to stderr, terminal or not; an interrupted (SIGINT, "
     "SIGTERM) fe or cavity run says where it stopped and, with --out, writes OUT.partial.json.")
@@ -78,8 +79,13 @@ def _level_options(p, model_help):
     p.add_argument("--profile", choices=["full", "ci"], default="full",
                    help="FE mesh profile whose DO1 calibration the fe level carries over (default full: 8 elements "
                         "across the shank radius)")
+    p.add_argument("--calibration", default="laboratory", metavar="laboratory|do1|FILE",
+                   help="calibration of the cavity level's strength scale: laboratory (default: fitted on the 25 "
+                        "laboratory shots of workflow/data/experiments-dev.csv, figures/calibration_cavity_laboratory.csv), "
+                        "do1 (fitted on the paper's DO1 shot, figures/calibration_cavity_do1.csv) or a calibration "
+                        "record FILE; the fe level has no laboratory calibration yet and takes DO1's failure strain")
     p.add_argument("--strength-scale", type=_option_number, default=None,
-                   help="cavity level: factor on the HJC strength surface instead of the DO1 calibration (> 0)")
+                   help="cavity level: factor on the HJC strength surface instead of the calibration (> 0)")
     p.add_argument("--failure-strain", type=_option_number, default=None,
                    help="fe level: erosion strain instead of the DO1 calibration (> 0)")
 
@@ -265,7 +271,7 @@ UNKNOWN_ACCURACY = "validated accuracy unknown (no committed validation under --
 def _validation(args):
     """(the development shots' range, level -> errors) from the committed validation under --root, or None."""
     from .tasks.levels import validated_accuracy
-    return validated_accuracy(args.root, args.profile)
+    return validated_accuracy(args.root, args.profile, getattr(args, "calibration", "laboratory"))
 
 
 def _trust(args, shot, level):
@@ -306,7 +312,7 @@ def _context(args):
     root = Path(args.root)
     if not (root / "workflow/config.yaml").is_file():
         raise ParameterError("argument", "--root", args.root, "a pipeline directory with workflow/config.yaml")
-    ctx = context_from_pipeline(root, args.profile, args.strength_law)
+    ctx = context_from_pipeline(root, args.profile, args.strength_law, args.calibration)
     if not args.max_minutes > 0:
         raise ParameterError("argument", "--max-minutes", args.max_minutes, "--max-minutes > 0")
     ctx.fe_max_seconds = 60.0 * args.max_minutes

@@ -13,13 +13,21 @@ their target's HJC set (``hjc.HJC``) from here, composed in this order:
 4. for a user's shot, the scaling to its concrete strength and density (``hjc_for_strength``) and the level's
    DO1 calibration (``shot_concrete``).
 
-Concrete of any strength (``hjc_for_strength``): the Table 1 set (fc = 48 MPa) scaled to the shot's fc by
-Holmquist, Johnson & Cook's (1993) own determination of the crush point (pc = fc/3, the pressure of the uniaxial
-compression test at failure; mu_c = pc/K with K the elastic bulk modulus), the elastic moduli scaled as E in
-ACI 318-19 (Eq 19.2.2.1.b: E = 4700 sqrt(fc) MPa, Poisson's ratio kept) and the tensile strength as fctm in the
-fib Model Code 2010 (Eq 5.1-3a: 0.30 fc^(2/3)). Each is applied as a ratio to its value at 48 MPa, so that the
-Table 1 set is returned exactly at 48 MPa. Carried over unchanged: the normalised strength and damage constants
-(A, B, N, C, eps0, SFMAX, D1, D2, EFMIN: HJC normalises them by fc), the compaction of the fully dense material
+Concrete of any strength (``hjc_for_strength``): the Table 1 set (fc = 48 MPa) scaled to the shot's fc by material
+data, each quantity as a ratio to its value at 48 MPa so that the Table 1 set is returned exactly at 48 MPa:
+
+- the normalised strength surface (A, B, N, C, SFMAX) is kept: HJC normalises stresses and pressures by fc, and
+  the triaxial criteria with an fc dependence move its normalised meridian by about 5 % between 30 and 100 MPa
+  (the Ottosen criterion of CEB-FIP MC90 / EN 1992-2 Annex LL; Attard & Setunge 1996 within its tests), as the
+  shape-invariant scaling of the K&C model does (docs/levels.md, workflow/data/hjc_sets.csv);
+- the crush point as Holmquist, Johnson & Cook (1993) determine it: pc = fc/3 (the pressure of the uniaxial
+  compression test at failure), mu_c = pc/K with K the elastic bulk modulus;
+- the elastic moduli as Eci in the fib Model Code 2010 (Eq 5.1-21: E proportional to fcm^(1/3)), Poisson's ratio
+  kept;
+- the tensile strength as fctm in the fib Model Code 2010 (Eqs 5.1-3a/b: 0.30 fck^(2/3) up to fck = 50 MPa,
+  2.12 ln(1 + fcm/10) above; fck = fcm - 8 MPa, Eq 5.1-1), the shot's fc taken as the mean strength fcm.
+
+Carried over unchanged: the damage constants (eps0, D1, D2, EFMIN), the compaction of the fully dense material
 (pl, mu_l, K1-K3) and the conventions of the configuration. The density is the shot's.
 
 No file is read here: the reference values and the config section come in loaded.
@@ -41,20 +49,37 @@ ALLOWED = {"lock": f"one of {list(LOCKS)}", "tension": f"one of {list(TENSIONS)}
 # high-strength concrete; outside it the rule is an extrapolation the cavity and fe levels refuse
 FC_RULE_RANGE = (20e6, 200e6)
 HJC_SCALING_RULE = {
-    "name": "HJC set of Table 1 scaled with fc",
+    "name": "HJC set of Table 1 scaled with fc by material data",
     "scaled": {
         "pc": "pc = fc/3 (Holmquist, Johnson & Cook 1993: the pressure of the uniaxial compression test at failure)",
-        "muc": "muc = pc/K, K scaled as E (Holmquist, Johnson & Cook 1993; ACI 318-19 Eq 19.2.2.1.b)",
-        "G": "G proportional to E = 4700 sqrt(fc) MPa at a fixed Poisson's ratio (ACI 318-19 Eq 19.2.2.1.b)",
-        "T": "T proportional to fctm = 0.30 fc^(2/3) MPa (fib Model Code 2010, Eq 5.1-3a)",
+        "muc": "muc = pc/K, K scaled as E (Holmquist, Johnson & Cook 1993)",
+        "G": "G and K proportional to Eci = Ec0 (fcm/10)^(1/3) at a fixed Poisson's ratio (fib Model Code 2010, "
+             "Eq 5.1-21)",
+        "T": "T proportional to fctm: 0.30 fck^(2/3) MPa up to fck = 50 MPa, 2.12 ln(1 + fcm/10) MPa above, "
+             "fck = fcm - 8 MPa (fib Model Code 2010, Eqs 5.1-3a/b and 5.1-1), fcm = the shot's fc",
         "fc": "the shot's compressive strength",
         "rho0": "the shot's density",
     },
     "carried_over": ["A", "B", "N", "C", "eps0", "smax", "D1", "D2", "efmin", "pl", "mul", "k1", "k2", "k3",
                      "lock", "tension", "rate_floor"],
+    "kept_normalised_because": "the fc dependence of the normalised triaxial meridian is about 5 % between 30 and "
+                               "100 MPa in the criteria of workflow/data/hjc_sets.csv (docs/levels.md)",
     "exact_at": "fc = 48 MPa (Table 1): every scaled quantity is its Table 1 value times a ratio equal to 1",
     "range_pa": list(FC_RULE_RANGE),
 }
+
+
+def elastic_modulus_mc2010(fcm):
+    """Eci of the fib Model Code 2010 (Eq 5.1-21, quartzite aggregate, Ec0 = 21.5 GPa) at mean strength fcm (Pa)."""
+    return 21.5e9 * (fcm / 10e6) ** (1.0 / 3.0)
+
+
+def tensile_strength_mc2010(fcm):
+    """fctm of the fib Model Code 2010 (Eqs 5.1-3a/b) at mean strength fcm (Pa), with fck = fcm - 8 MPa (Eq 5.1-1)."""
+    fck = fcm / MPA - 8.0
+    return MPA * (0.30 * fck ** (2.0 / 3.0) if fck <= 50.0 else 2.12 * math.log(1.0 + 0.1 * fcm / MPA))
+
+
 HJC_FIELDS = tuple(f.name for f in dataclasses.fields(HJC))
 
 
@@ -118,8 +143,9 @@ def hjc_for_strength(fc, base: HJC, density=None) -> HJC:
         raise ParameterError("shot", "fc_MPa", fc / MPA, f"{lo / MPA:g} <= fc_MPa <= {hi / MPA:g} at the cavity and fe "
                              "levels: the range of the HJC scaling rule")
     r = fc / base.fc
-    s = math.sqrt(r)
-    return dataclasses.replace(base, fc=fc, pc=base.pc * r, muc=base.muc * s, G=base.G * s, T=base.T * r ** (2.0 / 3.0),
+    e = elastic_modulus_mc2010(fc) / elastic_modulus_mc2010(base.fc)
+    t = tensile_strength_mc2010(fc) / tensile_strength_mc2010(base.fc)
+    return dataclasses.replace(base, fc=fc, pc=base.pc * r, muc=base.muc * r / e, G=base.G * e, T=base.T * t,
                                rho0=base.rho0 if density is None else density)
 
 

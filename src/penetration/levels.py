@@ -15,9 +15,9 @@ Levels (``LEVELS``):
 The concrete of the cavity and fe levels is Table 1's HJC set with the configured conventions (``Context.base``),
 scaled to the shot's fc and density by the HJC scaling rule of ``concrete`` (``concrete.shot_concrete``).
 
-Calibrations carried over from the DO1 shot (5.1 m at 835 m/s, 48 MPa):
-the cavity level's strength_scale (a factor on the strength surface) and the
-fe level's failure strain, the latter on the calibration's mesh scaled with
+Calibrations: the cavity level's strength_scale (a factor on the strength surface) fitted on the laboratory shots
+(``laboratory``, the default) or on the DO1 shot (5.1 m at 835 m/s, 48 MPa); the fe level's failure strain from
+DO1, the latter on the calibration's mesh scaled with
 the projectile: the same elements across the shank radius, and the core,
 window, margins, target radius, output interval, deceleration bins and
 filter cut-off in proportion to the radius (the time scales with the length
@@ -131,6 +131,7 @@ class Context:
     strength_law: str = "li_chen"
     strength_scale: float | None = None
     strength_scale_source: str = ""
+    strength_scale_record: str = "figures/calibration_cavity_laboratory.csv"   # named when the scale is missing
     failure_strain: float | None = None
     failure_strain_source: str = ""
     fe_reference_radius: float = 0.07       # m: shank radius of the DO1 mesh the failure strain belongs to
@@ -190,9 +191,10 @@ def _need(value, name, how, owner="levels"):
 
 def cavity_material(shot: UserShot, ctx: Context) -> HJC:
     """The cavity level's concrete of a shot: the base set scaled to its fc and density, at the DO1 strength scale."""
-    scale = _need(ctx.strength_scale, "strength_scale", "the cavity level's DO1 calibration (its committed record "
-                  "figures/calibration_cavity_do1.csv: snakemake -c2 figures/calibration_cavity_do1.csv; or give a "
-                  "strength scale: --strength-scale)")
+    rec = ctx.strength_scale_record
+    scale = _need(ctx.strength_scale, "strength_scale", f"the cavity level's calibration (its committed record {rec}: "
+                  f"snakemake -c2 {rec}; or --calibration do1|laboratory|FILE, or give a strength scale: "
+                  "--strength-scale)")
     return shot_concrete(ctx.base, shot.fc, shot.density, scale)
 
 

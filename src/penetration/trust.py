@@ -75,7 +75,8 @@ def warnings(shot, rng: ValidatedRange) -> list[str]:
 def accuracy_line(level, errors: dict) -> str:
     """The validated accuracy of a level from its row of validation_levels_summary.csv."""
     sign = "too deep" if errors["mean_rel_err"] > 0 else "too shallow"
-    return (f"validated accuracy of the {level} level on {int(errors['shots'])} development shots: depth error median "
+    how = f" ({errors['calibration']} calibration, {errors['scoring']})" if "calibration" in errors else ""
+    return (f"validated accuracy of the {level} level{how} on {int(errors['shots'])} development shots: depth error median "
             f"{100 * errors['median_abs_rel_err']:.0f} %, 90th percentile {100 * errors['p90_abs_rel_err']:.0f} %, "
             f"mean {100 * errors['mean_rel_err']:+.0f} % ({sign} on average); {int(errors['within_10pct'])} of "
             f"{int(errors['shots'])} within 10 %")

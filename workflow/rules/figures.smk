@@ -35,7 +35,7 @@ PAPER_TABLES = {
 }
 # a paper figure's params beyond its dpi
 PAPER_PARAMS = {name: dict(points=config["figures"]["points_per_segment"]) for name in ("fig06", "fig07")}
-FIGURES = [*PAPER_FIGURES, "validation", "cavity_sigma_n", "nose_contrasts"]  # the figures of rule all
+FIGURES = [*PAPER_FIGURES, "validation", "cavity_sigma_n", "nose_contrasts", "hjc_scaling"]  # the figures of rule all
 TABLES = list(PAPER_TABLES)
 
 
@@ -147,10 +147,55 @@ rule validation_fe:
     script: "../scripts/run_task.py"
 
 
+# The cavity level's strength scale calibrated on the laboratory shots (a study, committed: the calibration users'
+# shots take, and its out-of-sample validation): the protocol of validation.laboratory, each fold scored on the shots it
+# held out.
+rule calibrate_cavity_laboratory:
+    input: **task("tasks.laboratory"), shots=config["validation"]["shots"], reference=config["reference"],
+    output: csv="figures/calibration_cavity_laboratory.csv", predictions="figures/validation_cavity_laboratory.csv",
+            grid="figures/calibration_cavity_laboratory_grid.csv", timing="figures/timing/calibration_cavity_laboratory.csv",
+    params: cfg=cfg_slice("concrete", "cavity", "validation"), shots_path=config["validation"]["shots"],
+    threads: 1
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/calibrate_cavity_laboratory.tsv"
+    log: "results/logs/calibrate_cavity_laboratory.log",
+    script: "../scripts/run_task.py"
+
+
+# The fe level's failure strain at a mesh profile calibrated on the laboratory shots (a study), as the cavity level's.
+rule calibrate_fe_laboratory:
+    input: **task("tasks.laboratory"), shots=config["validation"]["shots"], reference=config["reference"],
+    output: csv="figures/fe/{profile}/calibration_fe_laboratory.csv",
+            predictions="figures/fe/{profile}/validation_fe_laboratory.csv",
+            grid="figures/fe/{profile}/calibration_fe_laboratory_grid.csv",
+            timing="figures/timing/calibration_fe_laboratory_{profile}.csv",
+    params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)),
+            shots_path=config["validation"]["shots"], profile=lambda w: w.profile,
+    wildcard_constraints: profile="full|ci",
+    threads: 2
+    resources: mem_mb=2000, runtime=180
+    benchmark: "results/benchmarks/calibrate_fe_laboratory_{profile}.tsv"
+    log: "results/logs/calibrate_fe_laboratory_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
+# DO1 as a test of the levels calibrated on the laboratory shots (a study): its excess over each prediction.
+rule do1_test:
+    input: **task("tasks.laboratory"), reference=config["reference"], do1="results/geometry/double_ogive_table4.json",
+           laboratory="figures/calibration_cavity_laboratory.csv",
+    output: csv="figures/do1_test.csv",
+    params: cfg=cfg_slice("concrete", "cavity", "validation"), shot=config["calibration"]["do1"],
+    threads: 1
+    resources: mem_mb=1000, runtime=10
+    benchmark: "results/benchmarks/do1_test.tsv"
+    log: "results/logs/do1_test.log",
+    script: "../scripts/run_task.py"
+
+
 use rule accuracy_trajectory as validation_levels with:
-    input: **task("figures.validation_levels"), analytic="results/validation/predictions.csv",
+    input: **task("tasks.levels"), analytic="results/validation/predictions.csv",
            trajectory="results/validation/trajectory.csv", cavity="results/validation/cavity.csv",
-           fe="results/validation/fe_{profile}.csv",
+           fe="results/validation/fe_{profile}.csv", laboratory="figures/validation_cavity_laboratory.csv",
     output: png=report("figures/fe/{profile}/validation_levels.png", caption="../report/captions/fe_validation_levels.rst", category="Users' shots"), csv="figures/fe/{profile}/validation_levels.csv",
             summary="figures/fe/{profile}/validation_levels_summary.csv",
             timing="figures/timing/validation_levels_{profile}.csv",
@@ -160,9 +205,11 @@ use rule accuracy_trajectory as validation_levels with:
 
 
 rule hjc_scaling:
-    input: **task("tasks.levels"), shots=config["validation"]["shots"], reference=config["reference"],
-    output: csv="figures/hjc_scaling.csv",
-    params: cfg=cfg_slice("concrete"),
+    input: **task("tasks.levels"), shots=config["validation"]["shots"],
+           reference=config["reference"], sets="workflow/data/hjc_sets.csv",
+    output: csv="figures/hjc_scaling.csv", criteria="figures/hjc_scaling_criteria.csv",
+            png=report("figures/hjc_scaling.png", caption="../report/captions/hjc_scaling.rst", category="Users' shots"),
+    params: cfg=cfg_slice("concrete"), dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/hjc_scaling.tsv"

@@ -8,11 +8,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import concrete, reference
+from .. import concrete, laboratory, reference, triaxial
 from ..cavity_level import cavity_settings, cavity_trajectory, sigma_table
 from ..config import element_sizes, load_with, machine_name
 from ..dop import penetration_depth
+from ..errors import ParameterError
 from ..fe.shot import Settings
+from ..figures.hjc_scaling import hjc_scaling_figure
+from ..figures.validation_levels import KEYS, validation_figure
 from ..geometry import make_nose
 from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
 from ..levels import Context, UserShot, output_fields, predict_rows, run
@@ -50,18 +53,26 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
     return ctx
 
 
-# The committed records of the DO1 calibrations the command line's levels carry over (rules cavity_calibration_record
-# and fe_calibration_record): relative to the pipeline's directory
+# The committed records of the calibrations the command line's levels carry over, relative to the pipeline's
+# directory: the DO1 calibrations (rules cavity_calibration_record and fe_calibration_record) and the cavity level's
+# calibration on the laboratory shots (rule calibrate_cavity_laboratory, its fold ``all``)
 CAVITY_CALIBRATION = "figures/calibration_cavity_do1.csv"
 FE_CALIBRATION = "figures/fe/{profile}/calibration_fe_do1.csv"
+CAVITY_LABORATORY = "figures/calibration_cavity_laboratory.csv"
+CALIBRATIONS = ("laboratory", "do1")
 
 
 def _calibration(path, key) -> dict:
-    """A DO1 calibration as the levels read it: a rule's JSON (results/) or its committed one-row record (figures/),
-    whose ``value`` is the fitted ``key``."""
+    """A calibration as the levels read it: a rule's JSON (results/), a committed one-row DO1 record (figures/) whose
+    ``value`` is the fitted ``key``, or a laboratory record (its fold ``all``)."""
     if str(path).endswith(".json"):
         return load_json(path)
-    row = pd.read_csv(path).iloc[0]
+    table = pd.read_csv(path)
+    if "fold" in table:
+        table = table[table.fold == "all"]
+        if len(table) != 1:
+            raise ValueError(f"{path}: a laboratory calibration needs exactly one row of fold 'all', found {len(table)}")
+    row = table.iloc[0]
     if row.parameter != key:
         raise ValueError(f"{path}: a calibration of {row.parameter}, not of {key}")
     out = {key: float(row.value)}
@@ -70,16 +81,40 @@ def _calibration(path, key) -> dict:
     return out
 
 
-def context_from_pipeline(root=".", profile="full", strength_law=None) -> Context:
+def cavity_calibration_path(root, calibration) -> Path:
+    """The committed record of the cavity level's strength scale: ``laboratory``, ``do1`` or a file (a record of
+    either form: a laboratory table or a one-row calibration with parameter strength_scale)."""
+    root = Path(root)
+    if calibration == "laboratory":
+        return root / CAVITY_LABORATORY
+    if calibration == "do1":
+        return root / CAVITY_CALIBRATION
+    return Path(calibration)
+
+
+def context_from_pipeline(root=".", profile="full", strength_law=None, calibration="laboratory") -> Context:
     """The levels' context as the pipeline builds it, from the files under ``root``: the config, the reference and
-    the committed records of the DO1 calibrations (a level whose record is missing refuses to run, saying which
-    file to build)."""
+    the committed calibration records (a level whose record is missing refuses to run, saying which file to build).
+
+    ``calibration``: ``laboratory`` (the default: the cavity level's strength scale fitted on the laboratory shots;
+    the fe level has no laboratory calibration yet and carries its DO1 failure strain over, saying so in its
+    source), ``do1`` (both levels calibrated on DO1) or the path of a cavity calibration record."""
     root = Path(root)
     cfg = load_with(root / "workflow/config.yaml", {})  # the strict loader: a key given twice, NaN or inf refused
-    cav = root / CAVITY_CALIBRATION
+    cav = cavity_calibration_path(root, calibration)
+    if calibration not in CALIBRATIONS and not cav.is_file():
+        raise ParameterError("argument", "--calibration", calibration, f"one of {list(CALIBRATIONS)} or an existing "
+                             "calibration record (CSV)")
     fe = root / FE_CALIBRATION.format(profile=profile)
     ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
                              profile, strength_law)
+    if cav.is_file():
+        what = {"laboratory": "calibrated on the laboratory shots (all folds' data)", "do1": "calibrated on DO1"}
+        ctx.strength_scale_source = f"{what.get(calibration, 'given by a record')}, {cav}"
+    else:
+        ctx.strength_scale_record = str(cav.relative_to(root)) if cav.is_relative_to(root) else str(cav)
+    if fe.is_file() and calibration != "do1":
+        ctx.failure_strain_source += " (the fe level has no laboratory calibration: DO1's)"
     ctx.fe_profile = profile
     return ctx
 
@@ -87,19 +122,28 @@ def context_from_pipeline(root=".", profile="full", strength_law=None) -> Contex
 VALIDATION_SUMMARY = "figures/fe/{profile}/validation_levels_summary.csv"
 
 
-def validated_accuracy(root=".", profile="full"):
+def validated_accuracy(root=".", profile="full", calibration="laboratory"):
     """(the development shots' ValidatedRange, level -> its errors on them) from the committed outputs under
-    ``root`` (the config's validation.shots and figures/fe/PROFILE/validation_levels_summary.csv); None where
-    either is missing."""
+    ``root`` (the config's validation.shots and figures/fe/PROFILE/validation_levels_summary.csv): per level its
+    primary row, of ``calibration`` where the level has rows of several calibrations (a calibration record of the
+    user's own has no validation: that level is left out). None where either file is missing."""
     from ..trust import ValidatedRange
     root = Path(root)
     summary = root / VALIDATION_SUMMARY.format(profile=profile)
     try:
         cfg = load_with(root / "workflow/config.yaml", {})
         _, rows = read_rows(root / cfg["validation"]["shots"])
-        errors = {r["level"]: r for r in pd.read_csv(summary).to_dict("records")}
+        table = pd.read_csv(summary)
     except (OSError, KeyError, ValueError):
         return None
+    if "primary" in table:
+        table = table[table.primary.astype(bool)]
+    errors = {}
+    for level, g in table.groupby("level", sort=False):
+        if "calibration" in g and g.calibration.nunique() > 1:
+            g = g[g.calibration == calibration]
+        if len(g):
+            errors[level] = g.iloc[0].to_dict()
     return ValidatedRange.from_rows(rows), errors
 
 
@@ -133,25 +177,105 @@ def validation_fe(inputs, outputs, params):
     _predict_level(inputs, outputs, params, "fe", params.profile)
 
 
+def _validation_shots(inputs):
+    """The development shots with every level's prediction and relative error (rel_err_KEY of laboratory.ROWS)."""
+    frames = {"analytic": pd.read_csv(inputs.analytic), "trajectory": pd.read_csv(inputs.trajectory),
+              "cavity": pd.read_csv(inputs.cavity), "fe": pd.read_csv(inputs.fe)}
+    base = frames["analytic"][KEYS].copy()
+    for level, f in frames.items():
+        if list(f.shot_id) != list(base.shot_id):
+            raise ValueError(f"the {level} predictions do not list the shots of the analytic ones")
+        base[f"dop_{level}_m"] = f.dop_pred_m.to_numpy()
+        base[f"rel_err_{level}"] = f.dop_pred_m.to_numpy() / base.dop_m.to_numpy() - 1
+    lab = pd.read_csv(inputs.laboratory)
+    for key, prefix in (("cavity_laboratory", "series:"), ("cavity_laboratory_fc_group", "fc_group:")):
+        held = lab[lab.fold.str.startswith(prefix)].set_index("shot_id")
+        if held.index.duplicated().any():
+            raise ValueError(f"{inputs.laboratory}: a shot is held out by two {prefix} folds")
+        if not set(held.index) <= set(base.shot_id):
+            raise ValueError(f"{inputs.laboratory}: held-out shots that are not development shots")
+        base[f"dop_{key}_m"] = base.shot_id.map(held.dop_pred_m)
+        base[f"rel_err_{key}"] = base[f"dop_{key}_m"] / base.dop_m - 1
+        base[f"series_{key}"] = base.shot_id.map(held.series)
+    if base.rel_err_cavity_laboratory.isna().any():
+        raise ValueError(f"{inputs.laboratory}: leave-one-series-out folds do not hold out every development shot")
+    return base, frames
+
+
+
+@task
+def validation_levels(inputs, outputs, params):
+    """Every level on the development shots, each scored out of its calibration's sample (laboratory.summary_rows):
+    the shots table, the summary with the residual's slopes, the wall times and the figure."""
+    shots, frames = _validation_shots(inputs)
+    write_csv(shots, outputs.csv)
+    timing, per_shot = [], {}
+    for level in laboratory.LEVELS:
+        if "wall_time_s" in frames[level]:
+            w = frames[level].wall_time_s.to_numpy()
+            per_shot[level] = float(np.median(w))
+            timing.append({"level": level, "profile": params.profile, "shots": len(w), "total_wall_time_s": float(w.sum()),
+                           "median_wall_time_per_shot_s": float(np.median(w)), "max_wall_time_per_shot_s": float(w.max())})
+    summary = laboratory.summary_rows(shots, params.law, per_shot)
+    write_csv(summary, outputs.summary)
+    write_csv(pd.DataFrame(timing), outputs.timing)
+    validation_figure(shots, summary, outputs.png, params.dpi, params.law, params.profile)
+
+
+
 @task
 def hjc_scaling(inputs, outputs, params):
-    """The HJC set the cavity and fe levels use at each concrete strength of the development shots (and at the
-    rule's ends and Table 1's 48 MPa), with the design-code values the rule scales by beside it."""
+    """The HJC set the cavity and fe levels use at each concrete strength of the development shots and of the
+    published sets (and at the rule's ends and Table 1's 48 MPa), with the fib Model Code 2010 values the rule
+    scales by; the normalised strength of the rule beside triaxial criteria; the figure against the published sets."""
     refs = reference.load_reference(inputs.reference)
     base = concrete.configured(refs, params.cfg["concrete"])
     shots = pd.read_csv(inputs.shots)
-    fcs = sorted({*(shots.fc_MPa.to_numpy() * 1e6), *concrete.FC_RULE_RANGE, base.fc})
+    sets = pd.read_csv(inputs.sets)
+    lo, hi = concrete.FC_RULE_RANGE
+    fcs = sorted({*(shots.fc_MPa.to_numpy() * 1e6), *(f for f in sets.fc_MPa.to_numpy() * 1e6 if lo <= f <= hi),
+                  lo, hi, base.fc})
     rows = []
     for fc in fcs:
         m = concrete.hjc_for_strength(float(fc), base)
         K = m.pc / m.muc
         E = 9 * K * m.G / (3 * K + m.G)
-        E_aci = 4700e6 * np.sqrt(fc / 1e6)  # ACI 318-19: E = 4700 sqrt(fc) MPa
-        T_fib = 0.30e6 * (fc / 1e6) ** (2 / 3)    # fib Model Code 2010: fctm = 0.30 fc^(2/3) MPa
+        E_code, T_code = concrete.elastic_modulus_mc2010(fc), concrete.tensile_strength_mc2010(fc)
         rows.append({"fc_MPa": fc / 1e6, "table1": bool(fc == base.fc), "pc_Pa": m.pc, "muc": m.muc, "G_Pa": m.G,
                      "K_Pa": K, "E_Pa": E, "poisson": (3 * K - 2 * m.G) / (2 * (3 * K + m.G)), "T_Pa": m.T,
-                     "E_aci318_Pa": E_aci, "E_over_aci318": E / E_aci, "T_fib2010_Pa": T_fib, "T_over_fib2010": m.T / T_fib})
+                     "E_mc2010_Pa": E_code, "E_over_mc2010": E / E_code, "T_mc2010_Pa": T_code,
+                     "T_over_mc2010": m.T / T_code})
     write_csv(pd.DataFrame(rows), outputs.csv)
+    criteria = criteria_rows(base)
+    write_csv(criteria, outputs.criteria)
+    fc = np.linspace(lo, hi, 200)
+    scaled = [concrete.hjc_for_strength(f, base) for f in fc]
+    r = fc / base.fc
+    curves = pd.DataFrame({"fc_MPa": fc / 1e6, "G": [m.G / 1e9 for m in scaled], "T": [m.T / 1e6 for m in scaled],
+                           "pc": [m.pc / 1e6 for m in scaled], "G_former": base.G / 1e9 * np.sqrt(r),
+                           "T_former": base.T / 1e6 * r ** (2 / 3)})
+    for p in (1.0, 2.0, 5.0):
+        sets[f"q_star_p{p:g}"] = [triaxial.hjc(p, s.A, s.B, s.N, s.smax) for s in sets.itertuples()]
+    hjc_scaling_figure(curves, sets, criteria, outputs.png, params.dpi)
+
+
+P_STARS = (0.5, 1.0, 2.0, 5.0, 10.0)
+CRITERIA_FC_MPA = (25.0, 35.0, 48.0, 70.0, 100.0, 110.0)
+
+
+def criteria_rows(base):
+    """q* at each p* of P_STARS and fc of CRITERIA_FC_MPA: the rule's HJC surface (fc-invariant), Ottosen's MC90
+    criterion and Attard & Setunge's (with the confinement it needs and whether that lies beyond its tests)."""
+    rows = []
+    for fc in CRITERIA_FC_MPA:
+        m = concrete.hjc_for_strength(fc * 1e6, base)
+        for p in P_STARS:
+            q_as, s3 = triaxial.attard_setunge(p, fc * 1e6)
+            rows.append({"fc_MPa": fc, "p_star": p, "q_star_rule": triaxial.hjc(p, m.A, m.B, m.N, m.smax),
+                         "q_star_ottosen_mc90": triaxial.ottosen_mc90(p, fc * 1e6), "q_star_attard_setunge": q_as,
+                         "attard_setunge_confinement_MPa": s3 / 1e6,
+                         "attard_setunge_extrapolated": bool(s3 > triaxial.ATTARD_SETUNGE_MAX_CONFINEMENT)})
+    return pd.DataFrame(rows)
 
 
 def _timed(fn, repeat=3):

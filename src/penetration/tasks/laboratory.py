@@ -1,0 +1,141 @@
+"""Tasks of the calibrations on laboratory series (``laboratory``): the cavity level's strength scale fitted on the
+development shots by the protocol of the config's ``validation.laboratory`` section, each fold scored on the shots
+it held out."""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pandas as pd
+
+from .. import reference
+from ..config import machine_name
+from ..io import read_inference, read_rows, task, write_csv
+from ..laboratory import Protocol, errors_summary, fit_factor, interpolated_depths
+from ..levels import UserShot, run, user_shot
+from .common import do1_shot
+from .levels import context_from_files
+
+# level -> (the Context attribute fitted, the record's parameter name, what it is)
+FITTED = {
+    "cavity": ("strength_scale", "strength_scale", "HJC strength_scale: factor on the whole strength surface of every shot's concrete (the "
+               "HJC set of Table 1 scaled to the shot's fc by the scaling rule), fitted on laboratory shots"),
+    "fe": ("failure_strain", "fs", "erosion strain of the fe level's target at its mesh (the same elements across every "
+           "shot's shank radius), fitted on laboratory shots"),
+}
+
+
+def shot_groups(protocol: Protocol, rows):
+    """(series, fc group) of every shot row."""
+    series = [protocol.series_of(r["source"]) for r in rows]
+    return series, [protocol.group_of(s, float(r["fc_MPa"])) for s, r in zip(series, rows)]
+
+
+def _depths(shots, ctx, level, value, log=None):
+    """Every shot's depth at ``level`` with its factor at ``value`` (``log``: a line per shot)."""
+    setattr(ctx, FITTED[level][0], value)
+    out, status = [], []
+    for k, s in enumerate(shots):
+        r = run(s, level, ctx)
+        out.append(r.depth_m)
+        status.append(r.status)
+        if log is not None:
+            log(f"  {s.label}: {r.depth_m:.4g} m ({r.status}, {r.wall_time_s:.1f} s; {k + 1}/{len(shots)})")
+    return np.array(out), status
+
+
+def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log=print):
+    """The factor of ``level`` on the laboratory shots ``rows``: each shot's depth on the protocol's grid, the fit of
+    every fold, and each fold's held-out shots computed at its fitted value. Returns (fits, predictions, grid rows,
+    timing) as data frames."""
+    _, name, fitted = FITTED[level]
+    shots = [user_shot(r) for r in rows]
+    measured = np.array([float(r["dop_m"]) for r in rows])
+    series, groups = shot_groups(protocol, rows)
+    grid = np.asarray(protocol.grid, float)
+    depths = np.empty((len(shots), grid.size))
+    statuses = [[""] * grid.size for _ in shots]
+    t0 = time.perf_counter()
+    for k, value in enumerate(grid):
+        depths[:, k], st = _depths(shots, ctx, level, value, log if level == "fe" else None)
+        for i, x in enumerate(st):
+            statuses[i][k] = x
+        log(f"{level} {name} {value:.4g}: {k + 1}/{grid.size} of the grid ({time.perf_counter() - t0:.0f} s)")
+    grid_seconds = time.perf_counter() - t0
+    fits, predictions = [], []
+    for fold, fit_mask, held in protocol.folds(series, groups):
+        f = fit_factor(grid, depths, measured, fit_mask)
+        scored = np.flatnonzero(held)
+        direct, direct_status = _depths([shots[i] for i in scored], ctx, level, f.value) if scored.size else (np.empty(0), [])
+        interp = interpolated_depths(grid, depths[scored], f.value) if scored.size else np.empty(0)
+        rel = direct / measured[scored] - 1
+        for j, i in enumerate(scored):
+            predictions.append({"fold": fold, "shot_id": rows[i]["shot_id"], "series": series[i], "fc_group": groups[i],
+                                "fc_MPa": float(rows[i]["fc_MPa"]), "diameter_m": float(rows[i]["diameter_m"]),
+                                "velocity_ms": float(rows[i]["velocity_ms"]), name: f.value,
+                                "dop_m": measured[i], "dop_pred_m": direct[j], "status": direct_status[j],
+                                "rel_error": rel[j],
+                                "interpolation_error": interp[j] / direct[j] - 1})
+        fits.append({"level": level, "fold": fold, "fitted_quantity": fitted, "parameter": name,
+                     "value": f.value, "fit_shots": f.shots, "fit_rms_log_error": f.rms_log_error,
+                     "at_grid_edge": f.at_grid_edge,
+                     "fit_series": ";".join(sorted({series[i] for i in np.flatnonzero(fit_mask)})),
+                     **{f"held_out_{k}": v for k, v in errors_summary(rel).items()},
+                     "objective": "least squares of ln(predicted/measured) over the fit's shots", "data": data_path})
+        log(f"fold {fold}: {name} {f.value:.4g} on {f.shots} shots, {scored.size} held out")
+    grid_rows = pd.DataFrame([{"shot_id": r["shot_id"], name: v, "dop_pred_m": depths[i, k], "status": statuses[i][k]}
+                              for i, r in enumerate(rows) for k, v in enumerate(grid)])
+    timing = pd.DataFrame([{"level": level, "stage": "grid", "shots": len(shots), "grid_values": grid.size,
+                            "wall_time_s": grid_seconds, "wall_time_per_shot_s": grid_seconds / depths.size,
+                            "machine": machine_name()}])
+    return pd.DataFrame(fits), pd.DataFrame(predictions), grid_rows, timing
+
+
+def _write(outputs, frames):
+    for key, frame in zip(("csv", "predictions", "grid", "timing"), frames):
+        write_csv(frame, getattr(outputs, key))
+
+
+@task
+def calibrate_cavity_laboratory(inputs, outputs, params):
+    """The cavity level's strength scale on the laboratory shots (validation.laboratory's protocol and grid)."""
+    lab = params.cfg["validation"]["laboratory"]
+    _, rows = read_rows(inputs.shots)
+    ctx = context_from_files(params.cfg, inputs.reference)
+    _write(outputs, calibrate_on_laboratory("cavity", ctx, rows, Protocol.from_config(lab, lab["strength_scales"]),
+                                            params.shots_path, lambda m: print(m, flush=True)))
+
+
+@task
+def calibrate_fe_laboratory(inputs, outputs, params):
+    """The fe level's failure strain at a mesh profile on the laboratory shots (the protocol of validation.laboratory,
+    the grid of its failure_strains), the mesh scaled to each shot as at the fe level of users' shots."""
+    lab = params.cfg["validation"]["laboratory"]
+    _, rows = read_rows(inputs.shots)
+    ctx = context_from_files(params.cfg, inputs.reference, profile=params.profile)
+    _write(outputs, calibrate_on_laboratory("fe", ctx, rows, Protocol.from_config(lab, lab["failure_strains"]),
+                                            params.shots_path, lambda m: print(m, flush=True)))
+
+
+@task
+def do1_test(inputs, outputs, params):
+    """DO1 as a test: the paper's measured shot (5.1 m) predicted at the analytic, trajectory and cavity levels with
+    the calibrations fitted on the laboratory shots (none for the closed forms: Li & Chen's S), its excess over each
+    prediction recorded as a finding. The fe level has no laboratory calibration and is left out (its DO1 failure
+    strain would make the test circular)."""
+    refs = reference.load_reference(inputs.reference)
+    nose = read_inference(inputs.do1)["nose"]
+    mass, vs, depth = do1_shot(refs, params.shot)
+    ctx = context_from_files(params.cfg, inputs.reference, inputs.laboratory)
+    ctx.strength_scale_source = f"calibrated on the laboratory shots, {inputs.laboratory}"
+    # Table 2's concrete: its fc, and Table 1's density (the set the DO1 calibrations take)
+    shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1")
+    rows = []
+    for level in ("analytic", "trajectory", "cavity"):
+        r = run(shot, level, ctx)
+        rows.append({"level": level, "calibration": "laboratory" if level == "cavity" else f"none: S from {ctx.strength_law}",
+                     "dop_pred_m": r.depth_m, "dop_m": depth, "excess": depth / r.depth_m - 1,
+                     "strength_scale": ctx.strength_scale if level == "cavity" else np.nan,
+                     "wall_time_s": r.wall_time_s})
+        print(f"DO1 at the {level} level: {r.depth_m:.4g} m against the measured {depth:.4g} m", flush=True)
+    write_csv(pd.DataFrame(rows), outputs.csv)
