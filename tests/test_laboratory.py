@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -163,3 +164,30 @@ def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(mon
     assert np.abs(preds.interpolation_error).max() < 1e-9
     assert set(held.shot_id) == {"x0", "x1", "x2"} and (held.status == "rest").all()
     assert len(grid) == 8 * len(GRID) and len(calls) == 8 * len(GRID) + 3 + 5 + 3 + 2   # the grid, then each fold's held-out shots
+
+
+def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(tmp_path):
+    """validated_accuracy picks, per level, the primary row of the calibration asked for where a level has several;
+    a level with one calibration keeps it whatever is asked."""
+    import shutil
+
+    import pandas as pd
+
+    from penetration.tasks.levels import validated_accuracy
+
+    root = Path(__file__).resolve().parents[1]
+    (tmp_path / "workflow/data").mkdir(parents=True)
+    shutil.copy(root / "workflow/config.yaml", tmp_path / "workflow/config.yaml")
+    shutil.copy(root / "workflow/data/experiments-dev.csv", tmp_path / "workflow/data/experiments-dev.csv")
+    rows = [("analytic", "none", True, 0.07), ("cavity", "do1", True, 0.34), ("cavity", "laboratory", True, 0.18),
+            ("cavity", "laboratory", False, 0.12), ("fe", "do1", True, 0.34)]
+    summary = pd.DataFrame([{"level": lv, "calibration": c, "scoring": "s", "primary": p, "shots": 25,
+                             "median_abs_rel_err": m, "p90_abs_rel_err": 0.3, "mean_rel_err": 0.1, "within_10pct": 5}
+                            for lv, c, p, m in rows])
+    (tmp_path / "figures/fe/full").mkdir(parents=True)
+    summary.to_csv(tmp_path / "figures/fe/full/validation_levels_summary.csv", index=False)
+    _, lab = validated_accuracy(tmp_path, "full", "laboratory")
+    _, do1 = validated_accuracy(tmp_path, "full", "do1")
+    assert lab["cavity"]["median_abs_rel_err"] == 0.18 and do1["cavity"]["median_abs_rel_err"] == 0.34
+    assert lab["fe"]["calibration"] == do1["fe"]["calibration"] == "do1"
+    assert set(lab) == {"analytic", "cavity", "fe"}
