@@ -184,17 +184,19 @@ def within_slope(x, y, groups, confidence=0.90):
 # The validation of every level on the development shots (tasks.levels.validation_levels): per row the level, its
 # calibration, how it is scored and the key of its predictions' columns (rel_err_KEY) in the shots table.
 LEVELS = ("analytic", "trajectory", "cavity", "fe")
-ROWS = [("analytic", "none: S from {law}", "all shots", "analytic"),
-        ("trajectory", "none: S from {law}", "all shots", "trajectory"),
-        ("cavity", "do1", "all shots (out of sample: DO1 is not one of them)", "cavity"),
-        ("cavity", "laboratory", "out of sample: leave one series out", "cavity_laboratory"),
-        ("cavity", "laboratory", "out of sample: leave one fc group out (2003 series)", "cavity_laboratory_fc_group"),
-        ("fe", "do1", "all shots (out of sample: DO1 is not one of them)", "fe")]
+ROWS = [("analytic", "none: S from {law}", "all shots (the S law's authors fitted it on data that include them)",
+         "analytic"),
+        ("trajectory", "none: S from {law}", "all shots (the S law's authors fitted it on data that include them)",
+         "trajectory"),
+        ("cavity", "do1", "all shots (fitted on DO1 only)", "cavity"),
+        ("cavity", "laboratory", "leave one series out", "cavity_laboratory"),
+        ("cavity", "laboratory", "leave one fc group out (2003 series)", "cavity_laboratory_fc_group"),
+        ("fe", "do1", "all shots (fitted on DO1 only)", "fe")]
 CONFIDENCE = 0.90
 
 
 
-def summary_rows(shots, law, timing):
+def summary_rows(shots, law):
     """One row per (level, calibration, scoring) of ROWS: the errors of the shots scored and the residual's slopes."""
     rows = []
     series = shots.series_cavity_laboratory.to_numpy()
@@ -212,6 +214,5 @@ def summary_rows(shots, law, timing):
                      "slope_ln_fc": b[0], "slope_ln_fc_low": b[1], "slope_ln_fc_high": b[2],
                      "slope_ln_fc_within_series": w[0], "slope_ln_fc_within_series_low": w[1],
                      "slope_ln_fc_within_series_high": w[2],
-                     "slope_ln_calibre": c[0], "slope_ln_calibre_low": c[1], "slope_ln_calibre_high": c[2],
-                     "median_wall_time_per_shot_s": timing.get(level, np.nan)})
+                     "slope_ln_calibre": c[0], "slope_ln_calibre_low": c[1], "slope_ln_calibre_high": c[2]})
     return pd.DataFrame(rows)

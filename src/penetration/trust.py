@@ -1,8 +1,8 @@
 """How far to trust an answer: each level's validated accuracy and the range it was validated over.
 
-The levels are validated on the development shots (``workflow/data/experiments-dev.csv``: nothing is fitted to
-them; figures/fe/{profile}/validation_levels_summary.csv has each level's errors). An answer is reported with its
-level's errors there, and with a warning for every quantity of the shot outside the range of those shots
+The levels are validated on the development shots (``workflow/data/experiments-dev.csv``; each calibration is
+scored only on the shots it was not fitted to: figures/fe/{profile}/validation_levels_summary.csv has each level's
+errors per calibration). An answer is reported with its level's errors there, at the calibration in use, and with a warning for every quantity of the shot outside the range of those shots
 (calibre, projectile mass, concrete strength and density, striking velocity, nose): there the errors are not
 known. Pure functions: the files are read by ``tasks.levels.validated_accuracy``.
 """

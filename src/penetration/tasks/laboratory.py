@@ -135,7 +135,6 @@ def do1_test(inputs, outputs, params):
         r = run(shot, level, ctx)
         rows.append({"level": level, "calibration": "laboratory" if level == "cavity" else f"none: S from {ctx.strength_law}",
                      "dop_pred_m": r.depth_m, "dop_m": depth, "excess": depth / r.depth_m - 1,
-                     "strength_scale": ctx.strength_scale if level == "cavity" else np.nan,
-                     "wall_time_s": r.wall_time_s})
+                     "strength_scale": ctx.strength_scale if level == "cavity" else np.nan})
         print(f"DO1 at the {level} level: {r.depth_m:.4g} m against the measured {depth:.4g} m", flush=True)
     write_csv(pd.DataFrame(rows), outputs.csv)

@@ -109,7 +109,7 @@ def context_from_pipeline(root=".", profile="full", strength_law=None, calibrati
     ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
                              profile, strength_law)
     if cav.is_file():
-        what = {"laboratory": "calibrated on the laboratory shots (all folds' data)", "do1": "calibrated on DO1"}
+        what = {"laboratory": "fitted on the laboratory shots", "do1": "calibrated on DO1"}
         ctx.strength_scale_source = f"{what.get(calibration, 'given by a record')}, {cav}"
     else:
         ctx.strength_scale_record = str(cav.relative_to(root)) if cav.is_relative_to(root) else str(cav)
@@ -152,9 +152,19 @@ def _optional(inputs, name):
     return getattr(inputs, name) if name in inputs.keys() else None
 
 
+def _committed(params, name):
+    """The path of a committed record a rule passes as a study input param (pipeline.study_input), or None."""
+    record = getattr(params, name, None)
+    if record is None:
+        return None
+    if record["sha256"] == "missing":
+        raise FileNotFoundError(f"{record['path']} is missing: snakemake -c2 {record['path']}")
+    return record["path"]
+
+
 def _predict_level(inputs, outputs, params, level, profile="full"):
-    ctx = context_from_files(params.cfg, inputs.reference, _optional(inputs, "cal_cavity"), _optional(inputs, "cal_fe"),
-                             profile, params.law)
+    ctx = context_from_files(params.cfg, inputs.reference, _optional(inputs, "cal_cavity"),
+                             _optional(inputs, "cal_fe") or _committed(params, "cal_fe"), profile, params.law)
     fields, rows = read_rows(inputs.shots)
     good, problems = predict_rows(rows, params.law, level, ctx,
                                   progress=lambda i, n: print(f"{level}: {i}/{n} shots", flush=True))
@@ -209,14 +219,13 @@ def validation_levels(inputs, outputs, params):
     the shots table, the summary with the residual's slopes, the wall times and the figure."""
     shots, frames = _validation_shots(inputs)
     write_csv(shots, outputs.csv)
-    timing, per_shot = [], {}
+    timing = []
     for level in laboratory.LEVELS:
         if "wall_time_s" in frames[level]:
             w = frames[level].wall_time_s.to_numpy()
-            per_shot[level] = float(np.median(w))
             timing.append({"level": level, "profile": params.profile, "shots": len(w), "total_wall_time_s": float(w.sum()),
                            "median_wall_time_per_shot_s": float(np.median(w)), "max_wall_time_per_shot_s": float(w.max())})
-    summary = laboratory.summary_rows(shots, params.law, per_shot)
+    summary = laboratory.summary_rows(shots, params.law)
     write_csv(summary, outputs.summary)
     write_csv(pd.DataFrame(timing), outputs.timing)
     validation_figure(shots, summary, outputs.png, params.dpi, params.law, params.profile)
