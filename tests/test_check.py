@@ -227,7 +227,13 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     import io
     moved = 0
     restructured = set()
+    # the HJC scaling rule of users' shots changed after the records (the fib Model Code 2010's moduli and tension):
+    # the validation's cavity and fe depths moved by a model change, not by a build, so the records no longer hold
+    # them against the committed outputs
+    rescaled = {f"figures/fe/{p}/validation_levels{s}.csv" for p in ("full", "ci") for s in ("", "_summary")}
     for path in files:
+        if old_build is None and path in rescaled:
+            continue
         new = pd.read_csv(record / path)
         old = pd.read_csv(io.StringIO(committed(path))) if old_build is None else pd.read_csv(against / path)
         if (len(new) != len(old) or not set(new.columns) & set(old.columns) >= {c for c in new.columns if c in KEYS}
@@ -243,5 +249,5 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     assert "figures/fe/rear_face.csv" in restructured
     assert restructured <= {"figures/fe/rear_face.csv", "figures/fe_verification.csv"}
     # each is a different build, not a copy: most FE files moved (fig13, the meshes, and the analytic,
-    # trajectory and cavity rows are the same)
-    assert moved >= 21
+    # trajectory and cavity rows are the same); against the committed outputs the four rescaled files are not compared
+    assert moved >= (21 if old_build is not None else 18)
