@@ -13,7 +13,7 @@ is fitted on characterised laboratory shots, never on the shots it is scored on.
 - each fold is scored on its held-out shots only.
 
 The level's depth is a smooth monotone function of the factor, so each shot's depth is computed once on a grid of
-values (``depth_grid``) and a fold's fit interpolates it (monotone cubic in ln value -> ln depth); the held-out
+values (the task's grid, ``tasks.laboratory.calibrate_on_laboratory``) and a fold's fit interpolates it (monotone cubic in ln value -> ln depth); the held-out
 shots are then computed directly at the fitted value, and the interpolation's error at those shots is reported with
 them (``interpolation_error``), so that no reported prediction is an interpolated one.
 """
@@ -193,7 +193,6 @@ ROWS = [("analytic", "none: S from {law}", "all shots (the S law's authors fitte
         ("cavity", "laboratory", "leave one fc group out (2003 series)", "cavity_laboratory_fc_group"),
         ("fe", "do1", "all shots (fitted on DO1 only)", "fe")]
 CONFIDENCE = 0.90
-
 
 
 def summary_rows(shots, law):
