@@ -190,3 +190,16 @@ def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(t
     assert lab["cavity"]["median_abs_rel_err"] == 0.18 and do1["cavity"]["median_abs_rel_err"] == 0.34
     assert lab["fe"]["calibration"] == do1["fe"]["calibration"] == "do1"
     assert set(lab) == {"analytic", "cavity", "fe"}
+
+
+def test_the_strength_scale_says_which_record_it_comes_from():
+    """The source of the cavity level's strength scale is read from the record itself: a laboratory table (a fold
+    column) or a DO1 record, whichever way the record was named."""
+    from penetration.tasks.levels import CAVITY_CALIBRATION, CAVITY_LABORATORY, context_from_pipeline
+
+    root = Path(__file__).resolve().parents[1]
+    assert context_from_pipeline(root).strength_scale_source.startswith("fitted on the laboratory shots")
+    assert context_from_pipeline(root, calibration="do1").strength_scale_source.startswith("calibrated on DO1")
+    for record, label in ((CAVITY_LABORATORY, "fitted on the laboratory shots"), (CAVITY_CALIBRATION, "calibrated on DO1")):
+        ctx = context_from_pipeline(root, calibration=str(root / record))
+        assert ctx.strength_scale_source.startswith(label)

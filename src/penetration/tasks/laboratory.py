@@ -127,7 +127,6 @@ def do1_test(inputs, outputs, params):
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
     ctx = context_from_files(params.cfg, inputs.reference, inputs.laboratory)
-    ctx.strength_scale_source = f"calibrated on the laboratory shots, {inputs.laboratory}"
     # Table 2's concrete: its fc, and Table 1's density (the set the DO1 calibrations take)
     shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1")
     rows = []

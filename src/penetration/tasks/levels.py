@@ -38,8 +38,9 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
                   cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,
                   cavity_rtol=cfg["cavity"]["rtol"], **fe)
     if cavity_cal is not None:
-        ctx.strength_scale = _calibration(cavity_cal, "strength_scale")["strength_scale"]
-        ctx.strength_scale_source = f"calibrated on DO1, {cavity_cal}"
+        cal = _calibration(cavity_cal, "strength_scale")
+        ctx.strength_scale = cal["strength_scale"]
+        ctx.strength_scale_source = f"{cal['source']}, {cavity_cal}"
     if fe_cal is not None:
         if "fe" not in cfg:
             raise ValueError(f"{fe_cal}: an fe calibration needs the config's fe section (its mesh), which is missing")
@@ -64,10 +65,11 @@ CALIBRATIONS = ("laboratory", "do1")
 
 def _calibration(path, key) -> dict:
     """A calibration as the levels read it: a rule's JSON (results/), a committed one-row DO1 record (figures/) whose
-    ``value`` is the fitted ``key``, or a laboratory record (its fold ``all``)."""
+    ``value`` is the fitted ``key``, or a laboratory record (its fold ``all``); ``source`` says which it is."""
     if str(path).endswith(".json"):
-        return load_json(path)
+        return {"source": "calibrated on DO1", **load_json(path)}
     table = pd.read_csv(path)
+    source = "fitted on the laboratory shots" if "fold" in table else "calibrated on DO1"
     if "fold" in table:
         table = table[table.fold == "all"]
         if len(table) != 1:
@@ -75,7 +77,7 @@ def _calibration(path, key) -> dict:
     row = table.iloc[0]
     if row.parameter != key:
         raise ValueError(f"{path}: a calibration of {row.parameter}, not of {key}")
-    out = {key: float(row.value)}
+    out = {key: float(row.value), "source": source}
     if "element_size_m" in row:
         out.update(element_size=float(row.element_size_m), elements_across_radius=float(row.elements_across_radius))
     return out
@@ -108,10 +110,7 @@ def context_from_pipeline(root=".", profile="full", strength_law=None, calibrati
     fe = root / FE_CALIBRATION.format(profile=profile)
     ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
                              profile, strength_law)
-    if cav.is_file():
-        what = {"laboratory": "fitted on the laboratory shots", "do1": "calibrated on DO1"}
-        ctx.strength_scale_source = f"{what.get(calibration, 'given by a record')}, {cav}"
-    else:
+    if not cav.is_file():
         ctx.strength_scale_record = str(cav.relative_to(root)) if cav.is_relative_to(root) else str(cav)
     if fe.is_file() and calibration != "do1":
         ctx.failure_strain_source += " (the fe level has no laboratory calibration: DO1's)"
