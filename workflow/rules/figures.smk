@@ -77,7 +77,7 @@ rule accuracy_trajectory:
 
 
 use rule accuracy_trajectory as validation with:
-    input: **task("figures.validation"), predictions="results/validation/predictions.csv",
+    input: **task("tasks.analytic"), predictions="results/validation/predictions.csv",
     output: png=report("figures/validation.png", caption="../report/captions/validation.rst", category="Validation"), csv="figures/validation.csv",
     params: dpi=config["figures"]["dpi"], law=config["validation"]["strength_law"],
     benchmark: "results/benchmarks/validation.tsv"

@@ -1,4 +1,4 @@
-"""Tasks of the analytic stage: Eq 9 calibrations and inferences, Fig 1 shares, validation predictions."""
+"""Tasks of the analytic stage: Eq 9 calibrations and inferences, Fig 1 shares, validation predictions and figure."""
 from __future__ import annotations
 
 import dataclasses
@@ -9,8 +9,10 @@ import pandas as pd
 from .. import reference
 from ..calibration import (calibrate_strength, cell_strength, fit_nstar_and_strength, fit_strength, infer_diameter,
                            resistance_shares as shares)
+from ..figures.validation import validation_eq9_figure
 from ..geometry import Ogive
 from ..io import load_json, read_rows, task, write_csv, write_json, write_rows
+from ..laboratory import errors_summary
 from ..nstar import nstar
 from ..resistance import Target, strength_factor
 from ..shots import output_fields, predict_rows
@@ -116,3 +118,13 @@ def validation_predictions(inputs, outputs, params):
     for p in problems:
         print(p)
     write_rows(outputs.csv, output_fields(fields), good)
+
+
+@task
+def validation(inputs, outputs, params):
+    """Eq 9 on the development shots: each shot's relative error and the figure with its summary."""
+    shots = pd.read_csv(inputs.predictions)
+    shots["rel_err"] = shots.dop_pred_m / shots.dop_m - 1
+    write_csv(shots[["shot_id", "mass_kg", "diameter_m", "nose_shape", "crh", "fc_MPa", "velocity_ms", "dop_m",
+                     "dop_pred_m", "rel_err"]], outputs.csv)
+    validation_eq9_figure(shots, errors_summary(shots.rel_err), outputs.png, params.dpi, params.law)

@@ -53,14 +53,13 @@ def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log
     measured = np.array([float(r["dop_m"]) for r in rows])
     series, groups = shot_groups(protocol, rows)
     grid = np.asarray(protocol.grid, float)
-    depths = np.empty((len(shots), grid.size))
-    statuses = [[""] * grid.size for _ in shots]
     t0 = time.perf_counter()
+    columns = []
     for k, value in enumerate(grid):
-        depths[:, k], st = _depths(shots, ctx, level, value, log if level == "fe" else None)
-        for i, x in enumerate(st):
-            statuses[i][k] = x
+        columns.append(_depths(shots, ctx, level, value, log if level == "fe" else None))
         log(f"{level} {name} {value:.4g}: {k + 1}/{grid.size} of the grid ({time.perf_counter() - t0:.0f} s)")
+    depths = np.column_stack([c[0] for c in columns])
+    statuses = np.array([c[1] for c in columns], dtype=object).T
     grid_seconds = time.perf_counter() - t0
     fits, predictions = [], []
     for fold, fit_mask, held in protocol.folds(series, groups):
@@ -83,7 +82,7 @@ def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log
                      **{f"held_out_{k}": v for k, v in errors_summary(rel).items()},
                      "objective": "least squares of ln(predicted/measured) over the fit's shots", "data": data_path})
         log(f"fold {fold}: {name} {f.value:.4g} on {f.shots} shots, {scored.size} held out")
-    grid_rows = pd.DataFrame([{"shot_id": r["shot_id"], name: v, "dop_pred_m": depths[i, k], "status": statuses[i][k]}
+    grid_rows = pd.DataFrame([{"shot_id": r["shot_id"], name: v, "dop_pred_m": depths[i, k], "status": statuses[i, k]}
                               for i, r in enumerate(rows) for k, v in enumerate(grid)])
     timing = pd.DataFrame([{"level": level, "stage": "grid", "shots": len(shots), "grid_values": grid.size,
                             "wall_time_s": grid_seconds, "wall_time_per_shot_s": grid_seconds / depths.size,
@@ -91,7 +90,14 @@ def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log
     return pd.DataFrame(fits), pd.DataFrame(predictions), grid_rows, timing
 
 
-def _write(outputs, frames):
+def _calibrate(level, grid_key, inputs, outputs, params, profile="full"):
+    """The calibration of ``level`` on the laboratory shots: the protocol of validation.laboratory on its grid
+    ``grid_key``, the records written to ``outputs``."""
+    lab = params.cfg["validation"]["laboratory"]
+    _, rows = read_rows(inputs.shots)
+    ctx = context_from_files(params.cfg, inputs.reference, profile=profile)
+    frames = calibrate_on_laboratory(level, ctx, rows, Protocol.from_config(lab, lab[grid_key]), params.shots_path,
+                                     lambda m: print(m, flush=True))
     for key, frame in zip(("csv", "predictions", "grid", "timing"), frames):
         write_csv(frame, getattr(outputs, key))
 
@@ -99,22 +105,14 @@ def _write(outputs, frames):
 @task
 def calibrate_cavity_laboratory(inputs, outputs, params):
     """The cavity level's strength scale on the laboratory shots (validation.laboratory's protocol and grid)."""
-    lab = params.cfg["validation"]["laboratory"]
-    _, rows = read_rows(inputs.shots)
-    ctx = context_from_files(params.cfg, inputs.reference)
-    _write(outputs, calibrate_on_laboratory("cavity", ctx, rows, Protocol.from_config(lab, lab["strength_scales"]),
-                                            params.shots_path, lambda m: print(m, flush=True)))
+    _calibrate("cavity", "strength_scales", inputs, outputs, params)
 
 
 @task
 def calibrate_fe_laboratory(inputs, outputs, params):
     """The fe level's failure strain at a mesh profile on the laboratory shots (the protocol of validation.laboratory,
     the grid of its failure_strains), the mesh scaled to each shot as at the fe level of users' shots."""
-    lab = params.cfg["validation"]["laboratory"]
-    _, rows = read_rows(inputs.shots)
-    ctx = context_from_files(params.cfg, inputs.reference, profile=params.profile)
-    _write(outputs, calibrate_on_laboratory("fe", ctx, rows, Protocol.from_config(lab, lab["failure_strains"]),
-                                            params.shots_path, lambda m: print(m, flush=True)))
+    _calibrate("fe", "failure_strains", inputs, outputs, params, profile=params.profile)
 
 
 @task

@@ -230,7 +230,6 @@ def validation_levels(inputs, outputs, params):
     validation_figure(shots, summary, outputs.png, params.dpi, params.law, params.profile)
 
 
-
 @task
 def hjc_scaling(inputs, outputs, params):
     """The HJC set the cavity and fe levels use at each concrete strength of the development shots and of the
@@ -424,3 +423,4 @@ def sweep_level(inputs, outputs, params):
         rows.append({"nose": name, "nstar": nstar(nose), "velocity_ms": v, **r.record()})
         print(f"{params.level}: {k + 1}/{n} shots ({name} at {v:g} m/s: {r.depth_m:.4g} m)", flush=True)
     write_csv(pd.DataFrame(rows), outputs.csv)
+
