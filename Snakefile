@@ -149,6 +149,10 @@ STUDY_OUTPUTS = [
     "figures/calibration_cavity_laboratory.csv", "figures/validation_cavity_laboratory.csv",
     "figures/calibration_cavity_laboratory_grid.csv", "figures/timing/calibration_cavity_laboratory.csv",
     "figures/do1_test.csv",
+    # the fe level's failure strain calibrated on the laboratory shots likewise, at both meshes
+    *[f"figures/{path}".format(profile=profile) for profile in ("full", "ci")
+      for path in ("fe/{profile}/calibration_fe_laboratory.csv", "fe/{profile}/validation_fe_laboratory.csv",
+                   "fe/{profile}/calibration_fe_laboratory_grid.csv", "timing/calibration_fe_laboratory_{profile}.csv")],
     # every level on the 25 development shots (the validated accuracy the command line reports), at both meshes
     *expand("figures/fe/{profile}/validation_levels.png", profile=["full", "ci"]),
     *expand("figures/timing/validation_levels_{profile}.csv", profile=["full", "ci"]),

@@ -119,16 +119,21 @@ def test_the_validation_summary_scores_each_calibration_on_its_held_out_shots_wi
                           "series_cavity_laboratory": series})
     for *_, key in ROWS:
         shots[f"rel_err_{key}"] = r
-    shots.loc[:2, "rel_err_cavity_laboratory_fc_group"] = np.nan      # 1994 shots: in no fc-group fold
+    for key in ("cavity_laboratory_fc_group", "fe_laboratory_fc_group"):
+        shots.loc[:2, f"rel_err_{key}"] = np.nan      # 1994 shots: in no fc-group fold
     s = summary_rows(shots, "li_chen")
     assert list(zip(s.level, s.calibration)) == [("analytic", "none: S from li_chen"), ("trajectory", "none: S from li_chen"),
                                                  ("cavity", "do1"), ("cavity", "laboratory"), ("cavity", "laboratory"),
-                                                 ("fe", "do1")]
-    assert s.shots.tolist() == [8, 8, 8, 8, 5, 8]
-    assert s.primary.tolist() == [True, True, True, True, False, True]
+                                                 ("fe", "do1"), ("fe", "laboratory"), ("fe", "laboratory")]
+    assert s.shots.tolist() == [8, 8, 8, 8, 5, 8, 8, 5]
+    assert s.primary.tolist() == [True, True, True, True, False, True, True, False]
+    assert s.predictions.tolist() == [key for *_, key in ROWS]
     np.testing.assert_allclose(s.slope_ln_fc_within_series, -0.2, rtol=1e-9)
     # the fc-group row has one series: its pooled and within-series slopes agree
     assert s.slope_ln_fc[4] == pytest.approx(-0.2)
+    # a level without laboratory predictions (a mesh not calibrated on them) has no laboratory rows
+    s = summary_rows(shots.drop(columns=["rel_err_fe_laboratory", "rel_err_fe_laboratory_fc_group"]), "li_chen")
+    assert list(zip(s.level, s.calibration))[-2:] == [("cavity", "laboratory"), ("fe", "do1")]
 
 
 def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(monkeypatch):
@@ -203,3 +208,31 @@ def test_the_strength_scale_says_which_record_it_comes_from():
     for record, label in ((CAVITY_LABORATORY, "fitted on the laboratory shots"), (CAVITY_CALIBRATION, "calibrated on DO1")):
         ctx = context_from_pipeline(root, calibration=str(root / record))
         assert ctx.strength_scale_source.startswith(label)
+
+
+def test_the_fe_level_takes_the_laboratory_failure_strain_of_its_mesh_where_one_is_recorded(tmp_path):
+    """Without a laboratory record at the profile's mesh the fe level carries DO1's failure strain over and says so;
+    with one it takes its fold ``all``; --calibration do1 takes DO1's; a record of another mesh is refused."""
+    import shutil
+
+    import pandas as pd
+
+    from penetration.tasks.levels import FE_CALIBRATION, FE_LABORATORY, context_from_pipeline
+
+    root = Path(__file__).resolve().parents[1]
+    for rel in ("workflow/config.yaml", "workflow/reference/paper_values.csv", FE_CALIBRATION.format(profile="full")):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(root / rel, tmp_path / rel)
+    do1 = float(pd.read_csv(tmp_path / FE_CALIBRATION.format(profile="full")).value[0])
+    ctx = context_from_pipeline(tmp_path)
+    assert ctx.failure_strain == do1 and "no laboratory calibration: DO1's" in ctx.failure_strain_source
+    size = ctx.fe_settings.element_size
+    record = pd.DataFrame([{"level": "fe", "fold": f, "parameter": "fs", "value": v, "element_size_m": size,
+                            "elements_across_radius": 0.07 / size} for f, v in (("all", 1.5), ("series:s1994", 1.2))])
+    record.to_csv(tmp_path / FE_LABORATORY.format(profile="full"), index=False)
+    ctx = context_from_pipeline(tmp_path)
+    assert ctx.failure_strain == 1.5 and ctx.failure_strain_source.startswith("fitted on the laboratory shots at 8 ")
+    assert context_from_pipeline(tmp_path, calibration="do1").failure_strain == do1
+    record.assign(element_size_m=2 * size).to_csv(tmp_path / FE_LABORATORY.format(profile="full"), index=False)
+    with pytest.raises(ValueError, match="calibrated at element size"):
+        context_from_pipeline(tmp_path)

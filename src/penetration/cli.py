@@ -48,7 +48,9 @@ LEVELS_EPILOG = (
     "the concrete of --root's config (Table 1's HJC set with the conventions of its concrete section), scale it to fc "
     "(concrete.HJC_SCALING_RULE) and carry over the calibrations committed under --root: the cavity level's strength "
     "scale fitted on the laboratory shots (figures/calibration_cavity_laboratory.csv; --calibration do1 takes DO1's), "
-    "the fe level's failure strain fitted on DO1 (figures/fe/PROFILE/calibration_fe_do1.csv), unless --strength-scale "
+    "the fe level's failure strain fitted on the laboratory shots at the profile's mesh where that record exists "
+    "(figures/fe/PROFILE/calibration_fe_laboratory.csv), else on DO1 (figures/fe/PROFILE/calibration_fe_do1.csv), "
+    "--calibration do1 taking DO1's for both, unless --strength-scale "
     "or --failure-strain is given. The fe level prints its estimated cost first and refuses a shot estimated above "
     "--max-minutes. Every answer comes with its level's validated accuracy on the development shots and a warning "
     "for each quantity outside their range. Progress goes to stderr, terminal or not; an interrupted (SIGINT, "
@@ -77,17 +79,19 @@ def _level_options(p, model_help):
     p.add_argument("--max-minutes", type=_option_number, default=DEFAULT_MAX_MINUTES,
                    help=f"fe level: refuse a shot whose estimated cost exceeds this (default {DEFAULT_MAX_MINUTES:g})")
     p.add_argument("--profile", choices=["full", "ci"], default="full",
-                   help="FE mesh profile whose DO1 calibration the fe level carries over (default full: 8 elements "
+                   help="FE mesh profile whose calibration the fe level carries over (default full: 8 elements "
                         "across the shank radius)")
     p.add_argument("--calibration", default="laboratory", metavar="laboratory|do1|FILE",
-                   help="calibration of the cavity level's strength scale: laboratory (default: fitted on the 25 "
-                        "laboratory shots of workflow/data/experiments-dev.csv, figures/calibration_cavity_laboratory.csv), "
-                        "do1 (fitted on the paper's DO1 shot, figures/calibration_cavity_do1.csv) or a calibration "
-                        "record FILE; the fe level has no laboratory calibration yet and takes DO1's failure strain")
+                   help="calibration of the cavity level's strength scale and the fe level's failure strain: "
+                        "laboratory (default: fitted on the 25 laboratory shots of workflow/data/experiments-dev.csv, "
+                        "figures/calibration_cavity_laboratory.csv and figures/fe/PROFILE/calibration_fe_laboratory.csv; "
+                        "a profile without the latter takes DO1's failure strain and says so), do1 (fitted on the "
+                        "paper's DO1 shot, figures/calibration_cavity_do1.csv, figures/fe/PROFILE/calibration_fe_do1.csv) "
+                        "or a cavity calibration record FILE")
     p.add_argument("--strength-scale", type=_option_number, default=None,
                    help="cavity level: factor on the HJC strength surface instead of the calibration (> 0)")
     p.add_argument("--failure-strain", type=_option_number, default=None,
-                   help="fe level: erosion strain instead of the DO1 calibration (> 0)")
+                   help="fe level: erosion strain instead of the calibration (> 0)")
 
 
 def _wrap(text, indent=0):

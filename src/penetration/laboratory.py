@@ -191,15 +191,21 @@ ROWS = [("analytic", "none: S from {law}", "all shots (the S law's authors fitte
         ("cavity", "do1", "all shots (fitted on DO1 only)", "cavity"),
         ("cavity", "laboratory", "leave one series out", "cavity_laboratory"),
         ("cavity", "laboratory", "leave one fc group out (2003 series)", "cavity_laboratory_fc_group"),
-        ("fe", "do1", "all shots (fitted on DO1 only)", "fe")]
+        ("fe", "do1", "all shots (fitted on DO1 only)", "fe"),
+        ("fe", "laboratory", "leave one series out", "fe_laboratory"),
+        ("fe", "laboratory", "leave one fc group out (2003 series)", "fe_laboratory_fc_group")]
 CONFIDENCE = 0.90
 
 
 def summary_rows(shots, law):
-    """One row per (level, calibration, scoring) of ROWS: the errors of the shots scored and the residual's slopes."""
+    """One row per (level, calibration, scoring) of ROWS whose predictions the shots table has (its column
+    rel_err_KEY, KEY named in the row's ``predictions``): the errors of the shots scored and the residual's slopes.
+    The primary row of a level is its DO1 or its leave-one-series-out one."""
     rows = []
     series = shots.series_cavity_laboratory.to_numpy()
     for level, calibration, scoring, key in ROWS:
+        if f"rel_err_{key}" not in shots:
+            continue
         err = shots[f"rel_err_{key}"]
         m = err.notna().to_numpy()
         r = np.log1p(err.to_numpy()[m])
@@ -208,7 +214,7 @@ def summary_rows(shots, law):
         w = within_slope(ln_fc, r, series[m], CONFIDENCE)
         c = slope(ln_d, r, CONFIDENCE)
         rows.append({"level": level, "calibration": calibration.format(law=law), "scoring": scoring,
-                     "primary": key in LEVELS or key == "cavity_laboratory",
+                     "predictions": key, "primary": key in LEVELS or key.endswith("_laboratory"),
                      **errors_summary(err.to_numpy()[m]),
                      "slope_ln_fc": b[0], "slope_ln_fc_low": b[1], "slope_ln_fc_high": b[2],
                      "slope_ln_fc_within_series": w[0], "slope_ln_fc_within_series_low": w[1],

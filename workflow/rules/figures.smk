@@ -180,13 +180,15 @@ rule calibrate_fe_laboratory:
     script: "../scripts/run_task.py"
 
 
-# DO1 as a test of the levels calibrated on the laboratory shots (a study): its excess over each prediction.
+# DO1 as a test of the levels calibrated on the laboratory shots (a study): its excess over each prediction (the fe
+# level at the default mesh).
 rule do1_test:
     input: **task("tasks.laboratory"), reference=config["reference"], do1="results/geometry/double_ogive_table4.json",
            laboratory="figures/calibration_cavity_laboratory.csv",
+           fe_laboratory="figures/fe/full/calibration_fe_laboratory.csv",
     output: csv="figures/do1_test.csv",
-    params: cfg=cfg_slice("concrete", "cavity", "validation"), shot=config["calibration"]["do1"],
-    threads: 1
+    params: cfg=cfg_slice("concrete", "cavity", "validation", fe=fe_cfg("full")), shot=config["calibration"]["do1"],
+    threads: 2
     resources: mem_mb=1000, runtime=10
     benchmark: "results/benchmarks/do1_test.tsv"
     log: "results/logs/do1_test.log",
@@ -197,6 +199,7 @@ use rule accuracy_trajectory as validation_levels with:
     input: **task("tasks.levels"), analytic="results/validation/predictions.csv",
            trajectory="results/validation/trajectory.csv", cavity="results/validation/cavity.csv",
            fe="results/validation/fe_{profile}.csv", laboratory="figures/validation_cavity_laboratory.csv",
+           fe_laboratory="figures/fe/{profile}/validation_fe_laboratory.csv",
     output: png=report("figures/fe/{profile}/validation_levels.png", caption="../report/captions/fe_validation_levels.rst", category="Users' shots"), csv="figures/fe/{profile}/validation_levels.csv",
             summary="figures/fe/{profile}/validation_levels_summary.csv",
             timing="figures/timing/validation_levels_{profile}.csv",

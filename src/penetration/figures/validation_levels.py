@@ -19,15 +19,17 @@ from .common import figure, save
 KEYS = ["shot_id", "mass_kg", "diameter_m", "nose_shape", "crh", "fc_MPa", "velocity_ms", "dop_m"]
 TITLES = {"analytic": "analytic (Eq 9, S from {law})", "trajectory": "trajectory (S from {law})",
           "cavity": "cavity (HJC scaled to fc, DO1 strength scale)", "fe": "fe ({profile} mesh, DO1 failure strain)",
-          "cavity_laboratory": "cavity (laboratory strength scale,\nleave one series out)"}
+          "cavity_laboratory": "cavity (laboratory strength scale,\nleave one series out)",
+          "fe_laboratory": "fe ({profile} mesh, laboratory failure\nstrain, leave one series out)"}
 
 
 def validation_figure(shots, summary, path, dpi, law, profile):
     """Predicted against measured depth at each level (shots: the rows of validation_levels.csv); the cavity level
-    twice, with its DO1 calibration and, out of sample, with the laboratory one."""
-    panels = [("analytic", 0), ("trajectory", 1), ("cavity", 2), ("cavity_laboratory", 3), ("fe", 5)]
-    fig, axes = figure(len(panels), 3.4, 3.9)
-    keys = [k for k, _ in panels]
+    twice, with its DO1 calibration and, out of sample, with the laboratory one; the fe level likewise where its
+    laboratory calibration exists (the summary's rows by their ``predictions`` key)."""
+    rows = summary.set_index("predictions")
+    keys = [k for k in ("analytic", "trajectory", "cavity", "cavity_laboratory", "fe", "fe_laboratory") if k in rows.index]
+    fig, axes = figure(len(keys), 3.4, 3.9)
     top = 1.1 * max(shots.dop_m.max(), max(shots[f"dop_{k}_m"].max() for k in keys))
     line = np.array([0, top])
     # one marker per projectile series (by calibre: its masses differ only by the shots' own scatter), colour by fc,
@@ -35,8 +37,8 @@ def validation_figure(shots, summary, path, dpi, law, profile):
     series = [f"{1e3 * d:.1f} mm, {shots.mass_kg[shots.diameter_m == d].min():.3g}-"
               f"{shots.mass_kg[shots.diameter_m == d].max():.3g} kg" for d in shots.diameter_m]
     norm = matplotlib.colors.Normalize(shots.fc_MPa.min(), shots.fc_MPa.max())
-    for ax, (key, i) in zip(axes, panels):
-        s = summary.iloc[i]
+    for ax, key in zip(axes, keys):
+        s = rows.loc[key]
         ax.fill_between(line, 0.8 * line, 1.2 * line, color="0.85", label="+-20 %")
         ax.plot(line, line, "k-", lw=0.8)
         for (name, g), mk in zip(shots.assign(series=series).groupby("series"), "os^dv<>ph*"):

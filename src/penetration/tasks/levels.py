@@ -50,7 +50,7 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
                              f"meshes at {ctx.fe_settings.element_size} m")
         ctx.failure_strain = cal["fs"]
         ctx.fe_reference_radius = cal["element_size"] * cal["elements_across_radius"]
-        ctx.failure_strain_source = f"calibrated on DO1 at {cal['elements_across_radius']:.3g} elements across the radius, {fe_cal}"
+        ctx.failure_strain_source = f"{cal['source']} at {cal['elements_across_radius']:.3g} elements across the radius, {fe_cal}"
     return ctx
 
 
@@ -60,6 +60,7 @@ def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profil
 CAVITY_CALIBRATION = "figures/calibration_cavity_do1.csv"
 FE_CALIBRATION = "figures/fe/{profile}/calibration_fe_do1.csv"
 CAVITY_LABORATORY = "figures/calibration_cavity_laboratory.csv"
+FE_LABORATORY = "figures/fe/{profile}/calibration_fe_laboratory.csv"
 CALIBRATIONS = ("laboratory", "do1")
 
 
@@ -98,22 +99,24 @@ def context_from_pipeline(root=".", profile="full", strength_law=None, calibrati
     """The levels' context as the pipeline builds it, from the files under ``root``: the config, the reference and
     the committed calibration records (a level whose record is missing refuses to run, saying which file to build).
 
-    ``calibration``: ``laboratory`` (the default: the cavity level's strength scale fitted on the laboratory shots;
-    the fe level has no laboratory calibration yet and carries its DO1 failure strain over, saying so in its
-    source), ``do1`` (both levels calibrated on DO1) or the path of a cavity calibration record."""
+    ``calibration``: ``laboratory`` (the default: the cavity level's strength scale and the fe level's failure strain
+    at the profile's mesh fitted on the laboratory shots; where the profile has no fe laboratory record the fe level
+    carries its DO1 failure strain over, saying so in its source), ``do1`` (both levels calibrated on DO1) or the path
+    of a cavity calibration record (the fe level then as with ``laboratory``)."""
     root = Path(root)
     cfg = load_with(root / "workflow/config.yaml", {})  # the strict loader: a key given twice, NaN or inf refused
     cav = cavity_calibration_path(root, calibration)
     if calibration not in CALIBRATIONS and not cav.is_file():
         raise ParameterError("argument", "--calibration", calibration, f"one of {list(CALIBRATIONS)} or an existing "
                              "calibration record (CSV)")
-    fe = root / FE_CALIBRATION.format(profile=profile)
+    fe_lab = root / FE_LABORATORY.format(profile=profile)
+    fe = fe_lab if calibration != "do1" and fe_lab.is_file() else root / FE_CALIBRATION.format(profile=profile)
     ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
                              profile, strength_law)
     if not cav.is_file():
         ctx.strength_scale_record = str(cav.relative_to(root)) if cav.is_relative_to(root) else str(cav)
-    if fe.is_file() and calibration != "do1":
-        ctx.failure_strain_source += " (the fe level has no laboratory calibration: DO1's)"
+    if fe.is_file() and fe != fe_lab and calibration != "do1":
+        ctx.failure_strain_source += f" (the {profile} mesh has no laboratory calibration: DO1's)"
     ctx.fe_profile = profile
     return ctx
 
@@ -196,20 +199,23 @@ def _validation_shots(inputs):
             raise ValueError(f"the {level} predictions do not list the shots of the analytic ones")
         base[f"dop_{level}_m"] = f.dop_pred_m.to_numpy()
         base[f"rel_err_{level}"] = f.dop_pred_m.to_numpy() / base.dop_m.to_numpy() - 1
-    lab = pd.read_csv(inputs.laboratory)
-    for key, prefix in (("cavity_laboratory", "series:"), ("cavity_laboratory_fc_group", "fc_group:")):
-        held = lab[lab.fold.str.startswith(prefix)].set_index("shot_id")
-        if held.index.duplicated().any():
-            raise ValueError(f"{inputs.laboratory}: a shot is held out by two {prefix} folds")
-        if not set(held.index) <= set(base.shot_id):
-            raise ValueError(f"{inputs.laboratory}: held-out shots that are not development shots")
-        base[f"dop_{key}_m"] = base.shot_id.map(held.dop_pred_m)
-        base[f"rel_err_{key}"] = base[f"dop_{key}_m"] / base.dop_m - 1
-        base[f"series_{key}"] = base.shot_id.map(held.series)
-    if base.rel_err_cavity_laboratory.isna().any():
-        raise ValueError(f"{inputs.laboratory}: leave-one-series-out folds do not hold out every development shot")
+    for level, name in (("cavity", "laboratory"), ("fe", "fe_laboratory")):
+        path = _optional(inputs, name)
+        if path is None:
+            continue
+        lab = pd.read_csv(path)
+        for key, prefix in ((f"{level}_laboratory", "series:"), (f"{level}_laboratory_fc_group", "fc_group:")):
+            held = lab[lab.fold.str.startswith(prefix)].set_index("shot_id")
+            if held.index.duplicated().any():
+                raise ValueError(f"{path}: a shot is held out by two {prefix} folds")
+            if not set(held.index) <= set(base.shot_id):
+                raise ValueError(f"{path}: held-out shots that are not development shots")
+            base[f"dop_{key}_m"] = base.shot_id.map(held.dop_pred_m)
+            base[f"rel_err_{key}"] = base[f"dop_{key}_m"] / base.dop_m - 1
+            base[f"series_{key}"] = base.shot_id.map(held.series)
+        if base[f"rel_err_{level}_laboratory"].isna().any():
+            raise ValueError(f"{path}: leave-one-series-out folds do not hold out every development shot")
     return base, frames
-
 
 
 @task
