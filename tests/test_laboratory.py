@@ -109,7 +109,7 @@ def test_the_validation_summary_scores_each_calibration_on_its_held_out_shots_wi
     row scores only the shots its folds held out; one primary row per (level, calibration)."""
     import pandas as pd
 
-    from penetration.laboratory import ROWS, summary_rows
+    from penetration.laboratory import ROWS, summary_rows, users_rows
 
     fc = np.array([39.0, 39.0, 23.0, 32.0, 40.0, 95.0, 101.0, 36.0])
     d = np.array([0.0762] * 3 + [0.0269] * 5)
@@ -131,9 +131,12 @@ def test_the_validation_summary_scores_each_calibration_on_its_held_out_shots_wi
     np.testing.assert_allclose(s.slope_ln_fc_within_series, -0.2, rtol=1e-9)
     # the fc-group row has one series: its pooled and within-series slopes agree
     assert s.slope_ln_fc[4] == pytest.approx(-0.2)
+    # users get each level's laboratory calibration where it has one
+    assert users_rows(s).predictions.tolist() == ["analytic", "trajectory", "cavity_laboratory", "fe_laboratory"]
     # a level without laboratory predictions (a mesh not calibrated on them) has no laboratory rows
     s = summary_rows(shots.drop(columns=["rel_err_fe_laboratory", "rel_err_fe_laboratory_fc_group"]), "li_chen")
     assert list(zip(s.level, s.calibration))[-2:] == [("cavity", "laboratory"), ("fe", "do1")]
+    assert users_rows(s).predictions.tolist() == ["analytic", "trajectory", "cavity_laboratory", "fe"]
 
 
 def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(monkeypatch):

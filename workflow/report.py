@@ -81,11 +81,12 @@ nc = pd.read_csv(FIG / "nose_contrasts_table.csv")
 band = pd.read_csv(study("fe/contrast_band.csv"))
 # a study of the finite-element contrasts extrapolated to zero element size; the bands of meshes when it is absent
 extrapolation = pd.read_csv(study("fe/contrast_extrapolation.csv")) if (FIG / "fe/contrast_extrapolation.csv").exists() else None
-# each level's out-of-sample validation at the calibration users get (the cavity level's laboratory one), and the
+# each level's out-of-sample validation at the calibration users get (laboratory where the level has it), and the
 # cavity level's with the DO1 calibration beside it
 _validation = pd.read_csv(study(f"fe/{PROFILE}/validation_levels_summary.csv"))
 _validation = _validation[_validation.primary.astype(bool)]
-validation = _validation[(_validation.level != "cavity") | (_validation.calibration == "laboratory")].set_index("level")
+_laboratory = set(_validation.level[_validation.calibration == "laboratory"])   # as laboratory.users_rows
+validation = _validation[(_validation.calibration == "laboratory") | ~_validation.level.isin(_laboratory)].set_index("level")
 cavity_do1 = _validation[(_validation.level == "cavity") & (_validation.calibration == "do1")].iloc[0]
 LEVELS = {"analytic": "Eq 9", "trajectory": "trajectory", "cavity": "cavity", "fe": "finite elements"}
 LEAST_GAIN = {"DO/CRH 4.5": "text.gain_pct_crh45", "DO/CRH 3": "text.gain_pct_crh3"}  # claimed least gains (%)

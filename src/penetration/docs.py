@@ -69,7 +69,7 @@ def levels(read) -> str:
         else:
             w = walls[level]
             cost = f"{_span(w['median_wall_time_per_shot_s'])} (up to {_span(w['max_wall_time_per_shot_s'])})"
-        default = " (default)" if level == "cavity" and a["calibration"] == "laboratory" else ""
+        default = " (default)" if a["calibration"] == "laboratory" else ""
         lines.append(f"| `{level}` | {a['calibration']}{default} | {cost} | {_pct(a['median_abs_rel_err'])}, "
                      f"{_pct(a['p90_abs_rel_err'])}, {float(a['mean_rel_err']) * 100:+.0f} % ({a['scoring']}, "
                      f"{a['shots']} shots) | {_ci(a, 'slope_ln_fc_within_series')} |")

@@ -221,3 +221,11 @@ def summary_rows(shots, law):
                      "slope_ln_fc_within_series_high": w[2],
                      "slope_ln_calibre": c[0], "slope_ln_calibre_low": c[1], "slope_ln_calibre_high": c[2]})
     return pd.DataFrame(rows)
+
+
+def users_rows(summary):
+    """The primary validation row of each level at the calibration users get by default: the level's laboratory row
+    where it has one, else its only primary row (a level not calibrated on the laboratory shots)."""
+    p = summary[summary.primary.astype(bool)]
+    with_laboratory = set(p.level[p.calibration == "laboratory"])
+    return p[(p.calibration == "laboratory") | ~p.level.isin(with_laboratory)]

@@ -22,6 +22,7 @@ import pandas as pd
 
 from ..figures.accuracy_cost import accuracy_cost_drawing
 from ..io import task, write_csv
+from ..laboratory import users_rows
 
 OTHER_NOSES = ("crh45", "crh3")
 CONTRASTS = ("DO/CRH 4.5", "CRH 4.5/CRH 3", "DO/CRH 3")
@@ -80,9 +81,8 @@ def accuracy_prediction(inputs, outputs, params):
     validation = {}
     for p, path in zip(params.validation_profiles, inputs.validation):
         v = pd.read_csv(path)
-        # each level's out-of-sample error at the calibration users get (the cavity level's: laboratory)
-        v = v[v.primary.astype(bool) & ((v.level != "cavity") | (v.calibration == "laboratory"))]
-        for r in v.itertuples():
+        # each level's out-of-sample error at the calibration users get (laboratory where the level has it)
+        for r in users_rows(v).itertuples():
             validation.setdefault(plain.get(r.level, ("fe", setting[p])), r.median_abs_rel_err)
     t = prediction_rows(pd.read_csv(inputs.table3), pd.read_csv(inputs.contrasts), fe_tables, fe_ratios, validation)
     write_csv(t, outputs.csv)
