@@ -122,6 +122,8 @@ class Model:
         rz = np.inf if c.rezone_radius is None else c.rezone_radius
         self.rezone_columns = int(min(g.nr, max(2, np.searchsorted(g.R[0], rz))))
         self.element_size = float(g.Z[1, 0] - g.Z[0, 0])   # the core's (its first row)
+        # the pilot hole's guide: its radius (the hole's wall, node column 0), 0 without one
+        self.guide = float(g.R[0, 0]) if c.pilot_guide and g.R[0, 0] > 0.0 else 0.0
         self.dt = self._initial_dt()
         self.dt0 = self.dt
         self.ctl[C_DTMIN] = c.dt_floor * self.dt0 / c.dt_factor
@@ -135,7 +137,7 @@ class Model:
 
 
     def boundary(self):
-        return Boundary(self.fix, self.dash, self.rowdash, self.zp, self.zs)
+        return Boundary(self.fix, self.dash, self.rowdash, self.zp, self.zs, self.guide)
 
     def loads(self):
         return Loads(self.presc_i, self.presc_v, self.load_i, self.load_f)

@@ -152,6 +152,24 @@ def node_pass(span, F, alive, mass, state, fix, dash, rowdash, Z, dtv, V, rf):
             rf[RF_IMPULSE, j] = fb
 
 
+@njit(cache=True)
+def guide(span, nodes, radius, dt):
+    """The pilot hole's rigid frictionless guide: a node of the hole's wall (column 0) that would move inside the
+    radius ``radius`` in this step is stopped on it (its radial velocity set so that it lands at the radius; a
+    perfectly inelastic radial impulse, no axial one). Returns the kinetic energy removed."""
+    if radius <= 0.0:
+        return 0.0
+    loss = 0.0
+    vr, r, m, state = nodes.vr, nodes.r, nodes.mass, nodes.state
+    for j in range(span.j0, span.j1 + 1):
+        n = j * (span.nr + 1)
+        if state[n] < DROPPED and r[n] + dt * vr[n] < radius:
+            v1 = (radius - r[n]) / dt
+            loss += 0.5 * m[n] * (vr[n] * vr[n] - v1 * v1)
+            vr[n] = v1
+    return loss
+
+
 @njit(parallel=True, cache=True)
 def move(span, X, V, state, dt):
     """x += dt v for the window's nodes (positions X, rows r and z) that are not dropped (every node outside the

@@ -28,7 +28,7 @@ from .contact import Projectile, contact
 from .element_pass import element_pass
 from .erosion import InsideTarget
 from .model import Model, body_of
-from .nodes import external, move, node_pass
+from .nodes import external, guide, move, node_pass
 from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_HOURGLASS, A_STEPS, AT_REST, B_ACTIVE,
                     B_EXIT, B_REST_VELOCITY, B_STOP_AT_REST, B_TIP, B_VELOCITY, C_DT, EROSION, FAILED, FAILURES,
                     H_CONTACTS, H_DEPTH, H_FORCE, H_MAX_FORCE, H_T, H_VELOCITY, HISTORY, HISTORY_FULL, INITIAL, N_ACC,
@@ -57,6 +57,7 @@ def step(st, proj, ctl, acc, dt, dtv):
         acc[A_CONTACT] += loss
         proj[B_VELOCITY] = V1
         proj[B_TIP] += dt * V1
+    acc[A_CONTACT] += guide(st.span, st.nodes, bc.guide, dt)
     move(st.span, st.X, st.V, st.nodes.state, dt)
     ctl[C_DT] = dt
     element_pass(st.span, st.X, st.V, st.kind, st.q, ctl, st.E, st.F, st.alive, st.rf, st.ri)

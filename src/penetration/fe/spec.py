@@ -62,6 +62,7 @@ class Controls:
     eject_length: float = 0.25          # an element above the struck face thinner than this many element sizes is ejected
     eject_height: float | None = None   # m: one whose centre is farther above the face than this too (None: no
     #                                     ejection at all: a problem without a struck face)
+    pilot_guide: bool = False           # a rigid frictionless guide fills the pilot hole: its wall nodes keep r >= r0
     crater_depth: float | None = None   # m: an element that loses its shape less than this below the struck face is
     #                                     crater debris, ejected like the lip (None: none; deeper ones stop the run)
 
