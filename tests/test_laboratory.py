@@ -139,7 +139,7 @@ def test_the_validation_summary_scores_each_calibration_on_its_held_out_shots_wi
     assert users_rows(s).predictions.tolist() == ["analytic", "trajectory", "cavity_laboratory", "fe"]
 
 
-def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(monkeypatch):
+def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(monkeypatch, tmp_path):
     """A fake cavity level whose depth is c_i s^-0.5 with c_i from the shot: measured depths made at s* = 0.8 for the
     1994 series and 0.6 for the 2003 series. The fold fitted on 2003 finds 0.6 and predicts the 1994 shots deeper by
     exactly (0.8/0.6)^0.5 - 1, from runs at its fitted value (the interpolation's error is nil on power laws)."""
@@ -171,6 +171,23 @@ def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(mon
     assert np.abs(preds.interpolation_error).max() < 1e-9
     assert set(held.shot_id) == {"x0", "x1", "x2"} and (held.status == "rest").all()
     assert len(grid) == 8 * len(GRID) and len(calls) == 8 * len(GRID) + 3 + 5 + 3 + 2   # the grid, then each fold's held-out shots
+
+    # the grid's runs made before, in pieces (one CSV per grid value, its rows in any order), give the same
+    # calibration, and only the held-out shots run
+    import pandas as pd
+    paths = []
+    for k, value in enumerate(GRID):
+        piece = grid[grid.strength_scale == value].assign(fs=value, wall_time_s=1.0).iloc[::-1]
+        paths.append(tmp_path / f"fs_{value:g}.csv")
+        piece.to_csv(paths[-1], index=False)
+    calls.clear()
+    again = L.calibrate_on_laboratory("cavity", ctx, rows, Protocol(SERIES, GROUPS, GRID), "data.csv", log=lambda m: None,
+                                      grid_runs=L.grid_runs_from(paths, rows, GRID))
+    pd.testing.assert_frame_equal(again[0], fits)
+    assert len(calls) == 3 + 5 + 3 + 2 and again[3].wall_time_s[0] == 8 * len(GRID)
+    pd.read_csv(paths[0]).assign(fs=9.0).to_csv(paths[0], index=False)
+    with pytest.raises(ValueError, match="not the runs of every laboratory shot"):
+        L.grid_runs_from(paths, rows, GRID)
 
 
 def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(tmp_path):

@@ -163,9 +163,35 @@ rule calibrate_cavity_laboratory:
     script: "../scripts/run_task.py"
 
 
-# The fe level's failure strain at a mesh profile calibrated on the laboratory shots (a study), as the cavity level's.
+# The fe level's failure strain at a mesh profile calibrated on the laboratory shots (a study), as the cavity level's,
+# its grid in pieces (every shot at one failure strain of the grid, fs_VALUE.csv): a piece is a record, once
+# committed it is read, never rebuilt (delete it to recompute it), so a grid of hours runs over sessions.
+FE_LAB_GRID = [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]]
+
+
+def fe_laboratory_piece_inputs(w):
+    """A missing piece's data; none for a committed one (its task then refuses to run: a record is not rebuilt)."""
+    if Path(f"figures/fe/{w.profile}/laboratory_grid/fs_{w.value}.csv").exists():
+        return []
+    return [config["validation"]["shots"], config["reference"]]
+
+
+rule fe_laboratory_grid_value:
+    input: **task("tasks.laboratory"), data=fe_laboratory_piece_inputs,
+    output: csv="figures/fe/{profile}/laboratory_grid/fs_{value}.csv",
+    params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)), profile=lambda w: w.profile,
+            value=lambda w: float(w.value),
+    wildcard_constraints: profile="full|ci", value="|".join(v.replace(".", r"\.") for v in FE_LAB_GRID),
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/fe_laboratory_grid_value_{profile}_{value}.tsv"
+    log: "results/logs/fe_laboratory_grid_value_{profile}_{value}.log",
+    script: "../scripts/run_task.py"
+
+
 rule calibrate_fe_laboratory:
     input: **task("tasks.laboratory"), shots=config["validation"]["shots"], reference=config["reference"],
+           grid=lambda w: [f"figures/fe/{w.profile}/laboratory_grid/fs_{v}.csv" for v in FE_LAB_GRID],
     output: csv="figures/fe/{profile}/calibration_fe_laboratory.csv",
             predictions="figures/fe/{profile}/validation_fe_laboratory.csv",
             grid="figures/fe/{profile}/calibration_fe_laboratory_grid.csv",

@@ -44,23 +44,29 @@ def _depths(shots, ctx, level, value, log=None):
     return np.array(out), status
 
 
-def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log=print):
+def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log=print, grid_runs=None):
     """The factor of ``level`` on the laboratory shots ``rows``: each shot's depth on the protocol's grid, the fit of
-    every fold, and each fold's held-out shots computed at its fitted value. Returns (fits, predictions, grid rows,
-    timing) as data frames."""
+    every fold, and each fold's held-out shots computed at its fitted value. ``grid_runs``: the grid's runs made
+    before (a list per grid value of (depths, statuses) in the order of ``rows``, and their wall time), else they
+    are run here. Returns (fits, predictions, grid rows, timing) as data frames."""
     _, name, fitted = FITTED[level]
     shots = [user_shot(r) for r in rows]
     measured = np.array([float(r["dop_m"]) for r in rows])
     series, groups = shot_groups(protocol, rows)
     grid = np.asarray(protocol.grid, float)
     t0 = time.perf_counter()
-    columns = []
-    for k, value in enumerate(grid):
-        columns.append(_depths(shots, ctx, level, value, log if level == "fe" else None))
-        log(f"{level} {name} {value:.4g}: {k + 1}/{grid.size} of the grid ({time.perf_counter() - t0:.0f} s)")
+    if grid_runs is None:
+        columns = []
+        for k, value in enumerate(grid):
+            columns.append(_depths(shots, ctx, level, value, log if level == "fe" else None))
+            log(f"{level} {name} {value:.4g}: {k + 1}/{grid.size} of the grid ({time.perf_counter() - t0:.0f} s)")
+        grid_seconds = time.perf_counter() - t0
+    else:
+        columns, grid_seconds = grid_runs
+        if len(columns) != grid.size or any(len(c[0]) != len(rows) for c in columns):
+            raise ValueError(f"the grid's runs: {len(columns)} grid values for {grid.size}, each of {len(rows)} shots")
     depths = np.column_stack([c[0] for c in columns])
     statuses = np.array([c[1] for c in columns], dtype=object).T
-    grid_seconds = time.perf_counter() - t0
     fits, predictions = [], []
     # the fe level's mesh: its element size at the reference radius, which every shot's mesh is scaled from
     mesh = {} if level != "fe" else {"element_size_m": ctx.fe_settings.element_size,
@@ -93,14 +99,14 @@ def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log
     return pd.DataFrame(fits), pd.DataFrame(predictions), grid_rows, timing
 
 
-def _calibrate(level, grid_key, inputs, outputs, params, profile="full"):
+def _calibrate(level, grid_key, inputs, outputs, params, profile="full", grid_runs=None):
     """The calibration of ``level`` on the laboratory shots: the protocol of validation.laboratory on its grid
-    ``grid_key``, the records written to ``outputs``."""
+    ``grid_key`` (its runs ``grid_runs`` where they were made before), the records written to ``outputs``."""
     lab = params.cfg["validation"]["laboratory"]
     _, rows = read_rows(inputs.shots)
     ctx = context_from_files(params.cfg, inputs.reference, profile=profile)
     frames = calibrate_on_laboratory(level, ctx, rows, Protocol.from_config(lab, lab[grid_key]), params.shots_path,
-                                     lambda m: print(m, flush=True))
+                                     lambda m: print(m, flush=True), grid_runs)
     for key, frame in zip(("csv", "predictions", "grid", "timing"), frames):
         write_csv(frame, getattr(outputs, key))
 
@@ -112,10 +118,50 @@ def calibrate_cavity_laboratory(inputs, outputs, params):
 
 
 @task
+def fe_laboratory_grid_value(inputs, outputs, params):
+    """Every laboratory shot at the fe level of a mesh profile with one failure strain of the calibration's grid
+    (a piece of the calibration: committed, so that the grid, hours at the default mesh, runs over sessions).
+    A committed piece is a record: the rule gives it no data and it is not rebuilt (delete it to recompute it)."""
+    if not inputs.data:
+        raise ValueError(f"{outputs.csv} is a committed piece of the grid: delete it to recompute it")
+    shots_path, reference_path = inputs.data
+    _, rows = read_rows(shots_path)
+    ctx = context_from_files(params.cfg, reference_path, profile=params.profile)
+    shots = [user_shot(r) for r in rows]
+    setattr(ctx, FITTED["fe"][0], float(params.value))
+    out = []
+    for k, (s, r) in enumerate(zip(shots, rows)):
+        res = run(s, "fe", ctx)
+        out.append({"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m, "status": res.status,
+                    "wall_time_s": res.wall_time_s})
+        print(f"  {s.label}: {res.depth_m:.4g} m ({res.status}, {res.wall_time_s:.1f} s; {k + 1}/{len(shots)})",
+              flush=True)
+    write_csv(pd.DataFrame(out), outputs.csv)
+
+
+def grid_runs_from(paths, rows, grid):
+    """The grid's runs from its pieces (one CSV per grid value, in the grid's order): (depths, statuses) per value
+    in the order of ``rows``, and their summed wall time."""
+    columns, seconds = [], 0.0
+    for path, value in zip(paths, grid):
+        piece = pd.read_csv(path).set_index("shot_id")
+        if not np.allclose(piece.fs, value) or set(piece.index) != {r["shot_id"] for r in rows}:
+            raise ValueError(f"{path}: not the runs of every laboratory shot at fs = {value:g}")
+        piece = piece.loc[[r["shot_id"] for r in rows]]
+        columns.append((piece.dop_pred_m.to_numpy(), list(piece.status)))
+        seconds += float(piece.wall_time_s.sum())
+    return columns, seconds
+
+
+@task
 def calibrate_fe_laboratory(inputs, outputs, params):
     """The fe level's failure strain at a mesh profile on the laboratory shots (the protocol of validation.laboratory,
-    the grid of its failure_strains), the mesh scaled to each shot as at the fe level of users' shots."""
-    _calibrate("fe", "failure_strains", inputs, outputs, params, profile=params.profile)
+    the grid of its failure_strains, run in pieces by fe_laboratory_grid_value), the mesh scaled to each shot as at
+    the fe level of users' shots."""
+    _, rows = read_rows(inputs.shots)
+    grid = params.cfg["validation"]["laboratory"]["failure_strains"]
+    _calibrate("fe", "failure_strains", inputs, outputs, params, profile=params.profile,
+               grid_runs=grid_runs_from(inputs.grid, rows, grid))
 
 
 @task
