@@ -340,3 +340,29 @@ def test_a_study_piece_keeps_every_shot_summary_and_refuses_a_partial_or_forced_
     with pytest.raises(ValueError, match="0 shots given, 3 expected"):
         fe_erosion_free_piece(SimpleNamespace(shots=[]), other, SimpleNamespace(piece="free819/table3_erosion_free", expected=3))
     assert not (tmp_path / "forced.json").exists()
+
+
+def test_the_pilot_guide_stops_a_wall_node_on_its_radius_and_books_the_kinetic_energy_it_removes():
+    """Closed form: a wall node (column 0) that would cross the guide's radius r0 in this step lands on it, its
+    radial velocity (r0 - r)/dt, and the guide removes m (v^2 - v1^2)/2; a node moving away, one that stays outside
+    and a node off the wall are untouched; no guide, no change."""
+    import numpy as np
+
+    from penetration.fe.nodes import guide
+    from penetration.fe.state import ACTIVE, Nodes, Span
+
+    nr, nz, r0, dt = 2, 3, 0.01, 1e-5
+    r = np.tile([r0, r0 + 0.005, r0 + 0.01], nz + 1)
+    r[0:3] += 5e-5                                  # row 0: 5e-5 outside, moving in at 10 m/s -> crosses
+    vr = np.zeros(r.size)
+    vr[0], vr[3], vr[6], vr[1] = -10.0, 2.0, -1.0, -100.0   # crosses; moves away; stays outside (1e-5 in 1 step); off the wall
+    r[3] = r[6] = r0 + 5e-5
+    mass = np.full(r.size, 3.0)
+    nodes = Nodes(r, np.zeros_like(r), vr, np.zeros_like(r), vr.copy(), np.zeros_like(r), mass,
+                  np.full(r.size, ACTIVE, np.int8), np.zeros(r.size, bool))
+    before = vr.copy()
+    assert guide(Span(nr, nz, 0, nz), nodes, 0.0, dt) == 0.0 and np.array_equal(vr, before)
+    loss = guide(Span(nr, nz, 0, nz), nodes, r0, dt)
+    assert vr[0] == pytest.approx(-5.0) and r[0] + dt * vr[0] == pytest.approx(r0, abs=1e-15)
+    assert loss == pytest.approx(0.5 * 3.0 * (100.0 - 25.0))
+    assert vr[3] == 2.0 and vr[6] == -1.0 and vr[1] == -100.0

@@ -29,17 +29,19 @@ STEADY_FROM = 8.0      # shank radii of depth after which the force is steady (t
 
 
 def driven_ogive(across: float, hole: float, v: float, material: HJC | None = None, outputs: int = 200,
-                 crater_depth: float | None = 4 * RADIUS) -> tuple[Model, Projectile]:
+                 crater_depth: float | None = 4 * RADIUS, guide: bool = False) -> tuple[Model, Projectile]:
     """The model and projectile of the driven check: the CRH 3 ogive (RADIUS) as a 1e6 kg body at ``v`` (its speed
     stays within 1e-4 of v), the erosion-free target with ``across`` elements across the shank radius and a pilot
     hole of ``hole`` shank radii, to TRAVEL radii of travel with ``outputs`` output samples; ``crater_depth``: the
-    guard's crater-debris depth (None: a lost shape anywhere below the face stops the run)."""
+    guard's crater-debris depth (None: a lost shape anywhere below the face stops the run); ``guide``: a rigid guide
+    fills the pilot hole (Controls.pilot_guide)."""
     a = RADIUS
     zeta, rho = body_outline(Ogive(PSI, a), 20 * a)
     end = TRAVEL * a / v
     g = build(MeshSpec(a / across, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
     m = Model(g, material or HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False,
                                             rezone_radius=8 * a, eject_height=a, crater_depth=crater_depth,
+                                            pilot_guide=guide,
                                             lateral="non_reflecting", bottom="non_reflecting", end_time=end,
                                             output_interval=end / outputs))
     return m, Projectile(zeta, rho, 1e6, 0.0, v)

@@ -49,7 +49,7 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
         # rezoned out to twice the core (the crater's heave reaches past the core); what flies farther than the shank
         # radius above the struck face, or loses its shape
         # above it, is ejected (fe.rezone.eject, fe.erosion)
-        controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False,
+        controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False, pilot_guide=target.pilot_guide,
                            rezone_radius=2.0 * spec.core_radius,
                            eject_height=nose.radius if controls.eject_height is None else controls.eject_height,
                            crater_depth=4.0 * nose.radius if controls.crater_depth is None else controls.crater_depth)

@@ -3,6 +3,8 @@ nose opening the tunnel by pushing the concrete aside, with an audit that has no
 on Blake's cavity, rezoned: ``verification_mechanics``.)"""
 from __future__ import annotations
 
+import numpy as np
+
 from ..checks import Check, below as _below
 from ..hjc import HJC
 from .quasi_static import driven_ogive
@@ -28,6 +30,30 @@ def erosion_free_audit(v=40.0, across=4, hole=0.25):
                    1e-300, "kg + J", "0 exactly: the erosion-free target deletes nothing (exact)"),
             _below(name, "|energy error| / work done on the target (no eroded term)", abs(error), 0.01, "1",
                    "conservation (the audit with the remap's and the ejecta's terms)")]
+
+
+@problem("erosion-free pilot guide")
+def erosion_free_guide(v=40.0, across=4, hole=0.25):
+    """The driven check of the erosion-free penetration audit with a rigid frictionless guide filling the pilot hole
+    (TargetSpec.pilot_guide): without it the hole's wall moves inside its radius ahead of the nose (the check says
+    by how much); with it no wall node does, and the guide's radial impulses, booked with the contact's, keep the
+    audit closed."""
+    name = f"erosion-free pilot guide (CRH 3, a = 20 mm, {v:g} m/s driven, hole {hole:g} a)"
+    out = {}
+    for guide in (False, True):
+        m, p = driven_ogive(across, hole, v, HJC(), outputs=50, crater_depth=None, guide=guide)
+        wall = np.arange(m.nz + 1) * (m.nr + 1)   # node column 0: the hole's wall
+        r0, inner = float(m.r[0]), [np.inf]
+        res = run(m, p, callback=lambda mm, t: inner.append(float(mm.r[wall].min())))
+        audit = res.audit[-1]
+        work = audit["internal"] + audit["ke_target"] + audit["hourglass"] + abs(audit["contact"]) + audit["boundary"]
+        out[guide] = (min(inner) / r0, abs(audit["energy_error"] * _scale(res) / work))
+    return [_below(name, "smallest radius of the hole's wall / its radius, without the guide", out[False][0],
+                   1.0 - 1e-3, "1", "< 1: the wall moves into the hole ahead of the nose (what the guide is for)"),
+            Check(name, "smallest radius of the hole's wall / its radius, with the guide", out[True][0], 1.0,
+                  1.0 - 1e-9, 1.0 + 1e-9, "1", "1: no wall node inside the guide (exact up to round-off)"),
+            _below(name, "|energy error| / work done on the target, with the guide", out[True][1], 0.01, "1",
+                   "conservation (the guide's impulses booked with the contact's)")]
 
 
 def _scale(res):
