@@ -213,8 +213,17 @@ def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(t
     _, lab = validated_accuracy(tmp_path, "full", "laboratory")
     _, do1 = validated_accuracy(tmp_path, "full", "do1")
     assert lab["cavity"]["median_abs_rel_err"] == 0.18 and do1["cavity"]["median_abs_rel_err"] == 0.34
-    assert lab["fe"]["calibration"] == do1["fe"]["calibration"] == "do1"
+    assert lab["fe"]["calibration"] == do1["fe"]["calibration"] == "do1"   # no fe laboratory record: DO1's
     assert set(lab) == {"analytic", "cavity", "fe"}
+    # with the profile's fe laboratory record the fe level runs with it: its row, or none when the validation has none
+    (tmp_path / "figures/fe/full/calibration_fe_laboratory.csv").write_text("fold\nall\n")
+    assert "fe" not in validated_accuracy(tmp_path, "full", "laboratory")[1]
+    assert validated_accuracy(tmp_path, "full", "do1")[1]["fe"]["calibration"] == "do1"
+    summary.loc[len(summary)] = {**summary.iloc[-1].to_dict(), "calibration": "laboratory", "median_abs_rel_err": 0.13}
+    summary.to_csv(tmp_path / "figures/fe/full/validation_levels_summary.csv", index=False)
+    assert validated_accuracy(tmp_path, "full", "laboratory")[1]["fe"]["median_abs_rel_err"] == 0.13
+    # a record of the user's own has no validation
+    assert "cavity" not in validated_accuracy(tmp_path, "full", "my_record.csv")[1]
 
 
 def test_the_strength_scale_says_which_record_it_comes_from():

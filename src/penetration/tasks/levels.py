@@ -127,8 +127,10 @@ VALIDATION_SUMMARY = "figures/fe/{profile}/validation_levels_summary.csv"
 def validated_accuracy(root=".", profile="full", calibration="laboratory"):
     """(the development shots' ValidatedRange, level -> its errors on them) from the committed outputs under
     ``root`` (the config's validation.shots and figures/fe/PROFILE/validation_levels_summary.csv): per level its
-    primary row, of ``calibration`` where the level has rows of several calibrations (a calibration record of the
-    user's own has no validation: that level is left out). None where either file is missing."""
+    primary row; for the calibrated levels the row of the calibration the level runs with (``calibration``; the fe
+    level's is DO1's where the profile has no laboratory record, as context_from_pipeline takes it). A level whose
+    calibration has no row (a record of the user's own, or a validation built before that calibration) is left out.
+    None where either file is missing."""
     from ..trust import ValidatedRange
     root = Path(root)
     summary = root / VALIDATION_SUMMARY.format(profile=profile)
@@ -140,10 +142,12 @@ def validated_accuracy(root=".", profile="full", calibration="laboratory"):
         return None
     if "primary" in table:
         table = table[table.primary.astype(bool)]
+    fe_calibration = ("laboratory" if calibration != "do1" and (root / FE_LABORATORY.format(profile=profile)).is_file()
+                      else "do1")
     errors = {}
     for level, g in table.groupby("level", sort=False):
-        if "calibration" in g and g.calibration.nunique() > 1:
-            g = g[g.calibration == calibration]
+        if level in ("cavity", "fe"):
+            g = g[g.calibration == (fe_calibration if level == "fe" else calibration)]
         if len(g):
             errors[level] = g.iloc[0].to_dict()
     return ValidatedRange.from_rows(rows), errors
