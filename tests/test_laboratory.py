@@ -182,7 +182,7 @@ def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(mon
         piece.to_csv(paths[-1], index=False)
     calls.clear()
     again = L.calibrate_on_laboratory("cavity", ctx, rows, Protocol(SERIES, GROUPS, GRID), "data.csv", log=lambda m: None,
-                                      grid_runs=L.grid_runs_from(paths, rows, GRID))
+                                      grid_runs=lambda rows: L.grid_runs_from(paths, rows, GRID))
     pd.testing.assert_frame_equal(again[0], fits)
     assert len(calls) == 3 + 5 + 3 + 2 and again[3].wall_time_s[0] == 8 * len(GRID)
     pd.read_csv(paths[0]).assign(fs=9.0).to_csv(paths[0], index=False)

@@ -31,24 +31,29 @@ def shot_groups(protocol: Protocol, rows):
     return series, [protocol.group_of(s, float(r["fc_MPa"])) for s, r in zip(series, rows)]
 
 
-def _depths(shots, ctx, level, value, log=None):
-    """Every shot's depth at ``level`` with its factor at ``value`` (``log``: a line per shot)."""
+def _runs(shots, ctx, level, value, log=None):
+    """Every shot's run at ``level`` with its factor at ``value`` (``log``: a line per shot)."""
     setattr(ctx, FITTED[level][0], value)
-    out, status = [], []
+    out = []
     for k, s in enumerate(shots):
-        r = run(s, level, ctx)
-        out.append(r.depth_m)
-        status.append(r.status)
+        out.append(run(s, level, ctx))
         if log is not None:
+            r = out[-1]
             log(f"  {s.label}: {r.depth_m:.4g} m ({r.status}, {r.wall_time_s:.1f} s; {k + 1}/{len(shots)})")
-    return np.array(out), status
+    return out
+
+
+def _depths(shots, ctx, level, value, log=None):
+    """Every shot's depth and status at ``level`` with its factor at ``value``."""
+    runs = _runs(shots, ctx, level, value, log)
+    return np.array([r.depth_m for r in runs]), [r.status for r in runs]
 
 
 def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log=print, grid_runs=None):
     """The factor of ``level`` on the laboratory shots ``rows``: each shot's depth on the protocol's grid, the fit of
-    every fold, and each fold's held-out shots computed at its fitted value. ``grid_runs``: the grid's runs made
-    before (a list per grid value of (depths, statuses) in the order of ``rows``, and their wall time), else they
-    are run here. Returns (fits, predictions, grid rows, timing) as data frames."""
+    every fold, and each fold's held-out shots computed at its fitted value. ``grid_runs(rows)``: the grid's runs
+    made before (a list per grid value of (depths, statuses) in the order of ``rows``, and their wall time), else
+    they are run here. Returns (fits, predictions, grid rows, timing) as data frames."""
     _, name, fitted = FITTED[level]
     shots = [user_shot(r) for r in rows]
     measured = np.array([float(r["dop_m"]) for r in rows])
@@ -62,7 +67,7 @@ def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log
             log(f"{level} {name} {value:.4g}: {k + 1}/{grid.size} of the grid ({time.perf_counter() - t0:.0f} s)")
         grid_seconds = time.perf_counter() - t0
     else:
-        columns, grid_seconds = grid_runs
+        columns, grid_seconds = grid_runs(rows)
         if len(columns) != grid.size or any(len(c[0]) != len(rows) for c in columns):
             raise ValueError(f"the grid's runs: {len(columns)} grid values for {grid.size}, each of {len(rows)} shots")
     depths = np.column_stack([c[0] for c in columns])
@@ -101,7 +106,7 @@ def calibrate_on_laboratory(level, ctx, rows, protocol: Protocol, data_path, log
 
 def _calibrate(level, grid_key, inputs, outputs, params, profile="full", grid_runs=None):
     """The calibration of ``level`` on the laboratory shots: the protocol of validation.laboratory on its grid
-    ``grid_key`` (its runs ``grid_runs`` where they were made before), the records written to ``outputs``."""
+    ``grid_key`` (its runs ``grid_runs(rows)`` where they were made before), the records written to ``outputs``."""
     lab = params.cfg["validation"]["laboratory"]
     _, rows = read_rows(inputs.shots)
     ctx = context_from_files(params.cfg, inputs.reference, profile=profile)
@@ -127,16 +132,10 @@ def fe_laboratory_grid_value(inputs, outputs, params):
     shots_path, reference_path = inputs.data
     _, rows = read_rows(shots_path)
     ctx = context_from_files(params.cfg, reference_path, profile=params.profile)
-    shots = [user_shot(r) for r in rows]
-    setattr(ctx, FITTED["fe"][0], float(params.value))
-    out = []
-    for k, (s, r) in enumerate(zip(shots, rows)):
-        res = run(s, "fe", ctx)
-        out.append({"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m, "status": res.status,
-                    "wall_time_s": res.wall_time_s})
-        print(f"  {s.label}: {res.depth_m:.4g} m ({res.status}, {res.wall_time_s:.1f} s; {k + 1}/{len(shots)})",
-              flush=True)
-    write_csv(pd.DataFrame(out), outputs.csv)
+    runs = _runs([user_shot(r) for r in rows], ctx, "fe", float(params.value), lambda m: print(m, flush=True))
+    write_csv(pd.DataFrame([{"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m,
+                             "status": res.status, "wall_time_s": res.wall_time_s} for r, res in zip(rows, runs)]),
+              outputs.csv)
 
 
 def grid_runs_from(paths, rows, grid):
@@ -158,10 +157,9 @@ def calibrate_fe_laboratory(inputs, outputs, params):
     """The fe level's failure strain at a mesh profile on the laboratory shots (the protocol of validation.laboratory,
     the grid of its failure_strains, run in pieces by fe_laboratory_grid_value), the mesh scaled to each shot as at
     the fe level of users' shots."""
-    _, rows = read_rows(inputs.shots)
     grid = params.cfg["validation"]["laboratory"]["failure_strains"]
     _calibrate("fe", "failure_strains", inputs, outputs, params, profile=params.profile,
-               grid_runs=grid_runs_from(inputs.grid, rows, grid))
+               grid_runs=lambda rows: grid_runs_from(inputs.grid, rows, grid))
 
 
 @task
@@ -182,7 +180,7 @@ def do1_test(inputs, outputs, params):
     rows = []
     for level in ("analytic", "trajectory", "cavity") + (("fe",) if fe_cal else ()):
         r = run(shot, level, ctx)
-        calibration = {"cavity": "laboratory", "fe": "laboratory"}.get(level, f"none: S from {ctx.strength_law}")
+        calibration = "laboratory" if level in ("cavity", "fe") else f"none: S from {ctx.strength_law}"
         rows.append({"level": level, "calibration": calibration, "dop_pred_m": r.depth_m, "dop_m": depth,
                      "excess": depth / r.depth_m - 1,
                      "strength_scale": ctx.strength_scale if level == "cavity" else np.nan,

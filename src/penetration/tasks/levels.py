@@ -95,6 +95,15 @@ def cavity_calibration_path(root, calibration) -> Path:
     return Path(calibration)
 
 
+def fe_calibration_record(root, profile, calibration) -> tuple[Path, str]:
+    """The committed record of the fe level's failure strain at ``profile``'s mesh and which calibration it is:
+    its laboratory one unless ``calibration`` is ``do1`` or the profile has none, else DO1's."""
+    lab = Path(root) / FE_LABORATORY.format(profile=profile)
+    if calibration != "do1" and lab.is_file():
+        return lab, "laboratory"
+    return Path(root) / FE_CALIBRATION.format(profile=profile), "do1"
+
+
 def context_from_pipeline(root=".", profile="full", strength_law=None, calibration="laboratory") -> Context:
     """The levels' context as the pipeline builds it, from the files under ``root``: the config, the reference and
     the committed calibration records (a level whose record is missing refuses to run, saying which file to build).
@@ -109,13 +118,12 @@ def context_from_pipeline(root=".", profile="full", strength_law=None, calibrati
     if calibration not in CALIBRATIONS and not cav.is_file():
         raise ParameterError("argument", "--calibration", calibration, f"one of {list(CALIBRATIONS)} or an existing "
                              "calibration record (CSV)")
-    fe_lab = root / FE_LABORATORY.format(profile=profile)
-    fe = fe_lab if calibration != "do1" and fe_lab.is_file() else root / FE_CALIBRATION.format(profile=profile)
+    fe, fe_calibration = fe_calibration_record(root, profile, calibration)
     ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
                              profile, strength_law)
     if not cav.is_file():
         ctx.strength_scale_record = str(cav.relative_to(root)) if cav.is_relative_to(root) else str(cav)
-    if fe.is_file() and fe != fe_lab and calibration != "do1":
+    if fe.is_file() and fe_calibration == "do1" and calibration != "do1":
         ctx.failure_strain_source += f" (the {profile} mesh has no laboratory calibration: DO1's)"
     ctx.fe_profile = profile
     return ctx
@@ -142,8 +150,7 @@ def validated_accuracy(root=".", profile="full", calibration="laboratory"):
         return None
     if "primary" in table:
         table = table[table.primary.astype(bool)]
-    fe_calibration = ("laboratory" if calibration != "do1" and (root / FE_LABORATORY.format(profile=profile)).is_file()
-                      else "do1")
+    _, fe_calibration = fe_calibration_record(root, profile, calibration)
     errors = {}
     for level, g in table.groupby("level", sort=False):
         if level in ("cavity", "fe"):
