@@ -1,4 +1,4 @@
-"""Validation: measured against predicted DOP for the development shots (the task: tasks.levels.validation; the
+"""Validation: measured against predicted DOP for the development shots (the task: tasks.analytic.validation; the
 scores: laboratory.errors_summary)."""
 from __future__ import annotations
 
