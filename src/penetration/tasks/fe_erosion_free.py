@@ -29,16 +29,17 @@ def fe_erosion_free_piece(inputs, outputs, params):
 
 @task
 def fe_erosion_free_convergence(inputs, outputs, params):
-    """The study's tables (convergence per depth and contrast, each shot, each mesh's cost) and its figure."""
+    """The study's tables (convergence per depth and contrast, each shot, each mesh's cost) and its figure, from every
+    piece (``params.pieces``, ``params.eroding``: path and digest; the inputs are only the pieces built in this run)."""
     refs = load_reference(inputs.reference)
     paper = {(float(v), n): refs[f"table3.sim.{v}.{n}"].si for v in VELOCITIES for n in TABLE3_NOSES}
-    shots = grid_study.shot_rows([s for p in inputs.pieces for s in load_json(p)["shots"]], params.across)
+    shots = grid_study.shot_rows([s for p in params.pieces for s in load_json(p["path"])["shots"]], params.across)
     conv = grid_study.convergence_rows(shots, paper, params.goal_depth, params.goal_contrast)
     write_csv(shots, outputs.depths)
     write_csv(conv, outputs.csv)
     holes = grid_study.hole_rows(conv, params.goal_depth, params.goal_contrast)
     write_csv(holes, outputs.holes)
-    eroding = [s for s in load_json(inputs.eroding)["shots"] if float(s["velocity"]) in set(shots.velocity_ms)]
+    eroding = [s for s in load_json(params.eroding["path"])["shots"] if float(s["velocity"]) in set(shots.velocity_ms)]
     write_csv(grid_study.cost_rows(shots, eroding, params.eroding_across), outputs.cost)
     grid_convergence_figure(conv, holes, outputs.png, params.dpi)
 
