@@ -284,7 +284,7 @@ def test_the_quasi_static_task_refines_each_hole_and_judges_the_limit_against_th
     for hole, f0 in limits.items():
         for n in (4.0, 6.0, 9.0, 13.5):
             path = tmp_path / f"h{hole}_{n}.json"
-            write_json({"elements_across": n, "pilot_hole": hole, "velocity_ms": 40.0,
+            write_json({"elements_across": n, "pilot_hole": hole, "pilot_guide": True, "velocity_ms": 40.0,
                         "force_over_area_pa": f0 * (1 - 0.8 / n ** 2), "force_std_pa": 0.0, "samples": 10,
                         "eroded_mass_kg": 0.0, "steps": 1, "elements": 1, "status": "end", "wall_time_s": 1.0}, path)
             runs.append(str(path))

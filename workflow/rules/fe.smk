@@ -378,7 +378,7 @@ QS = config["fe_erosion_free"]["quasi_static"]
 rule fe_quasi_static_run:
     input: **task("tasks.fe_erosion_free"),
     output: json="results/fe/quasi_static/hole{hole}_across{across}.json",
-    params: across=lambda w: w.across, hole=lambda w: w.hole, velocity=QS["velocity"],
+    params: across=lambda w: w.across, hole=lambda w: w.hole, velocity=QS["velocity"], guide=QS["guide"],
     threads: 2
     resources: mem_mb=2000, runtime=20
     benchmark: "results/benchmarks/fe_quasi_static_run_hole{hole}_across{across}.tsv"

@@ -47,11 +47,13 @@ def driven_ogive(across: float, hole: float, v: float, material: HJC | None = No
     return m, Projectile(zeta, rho, 1e6, 0.0, v)
 
 
-def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: HJC | None = None) -> dict:
+def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: HJC | None = None,
+                 guide: bool = False) -> dict:
     """The steady axial force over pi a^2 (Pa, compression positive: mean and standard deviation over the output
     samples beyond STEADY_FROM radii of depth) of the ogive driven at ``v`` (m/s) into the erosion-free target with
-    ``across`` elements across its shank radius and a pilot hole of ``hole`` shank radii; with what the run cost. A
-    run that stops (solver.Unstable) gives status "stopped", its diagnostic and no force."""
+    ``across`` elements across its shank radius and a pilot hole of ``hole`` shank radii, the hole filled by the rigid
+    guide if ``guide`` (as the study's scenes have it); with what the run cost. A run that stops (solver.Unstable)
+    gives status "stopped", its diagnostic and no force."""
     if not (math.isfinite(across) and across >= 2):
         raise ValueError(f"quasi-static force: across = {across}; allowed: >= 2 elements across the shank radius")
     if not 0.0 < hole < 1.0:
@@ -60,8 +62,9 @@ def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: H
         raise ValueError(f"quasi-static force: v = {v} m/s; allowed: 0 < v <= 200 m/s (a low, driven speed)")
     a = RADIUS
     t0 = time.perf_counter()
-    m, p = driven_ogive(across, hole, v, material)
-    base = {"elements_across": float(across), "pilot_hole": float(hole), "velocity_ms": float(v)}
+    m, p = driven_ogive(across, hole, v, material, guide=guide)
+    base = {"elements_across": float(across), "pilot_hole": float(hole), "pilot_guide": bool(guide),
+            "velocity_ms": float(v)}
     try:
         res = run(m, p)
     except Unstable as stop:   # a stopped run is a result of the check: where and when, no force

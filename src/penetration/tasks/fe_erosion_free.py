@@ -82,7 +82,8 @@ def fe_quasi_static_run(inputs, outputs, params):
     """One driven run of the quasi-static check (its mesh and hole from the wildcards)."""
     from ..fe.quasi_static import driven_force
 
-    write_json(driven_force(float(params.across), float(params.hole), float(params.velocity)), outputs.json)
+    write_json(driven_force(float(params.across), float(params.hole), float(params.velocity), guide=bool(params.guide)),
+               outputs.json)
 
 
 @task
@@ -113,7 +114,7 @@ def fe_quasi_static(inputs, outputs, params):
         # extrapolation (Celik et al. 2008)
         last3 = g.force_over_area_pa.to_numpy()[:upto][-3:] if upto >= 3 else np.array([np.nan])
         low, high = (float(last3.min()), float(last3.max())) if status == "oscillatory" else (ext, ext)
-        rows.append({"pilot_hole": hole, "velocity_ms": float(params.velocity),
+        rows.append({"pilot_hole": hole, "pilot_guide": bool(g.pilot_guide.all()), "velocity_ms": float(params.velocity),
                      **{f"force_over_area_at_{n:g}_across_pa": x for n, x in zip(across, g.force_over_area_pa)},
                      "meshes_stopped": int((g.status == "stopped").sum()), "observed_order": order, "status": status,
                      "extrapolated_pa": ext, "gci_fine_relative": gci, **ref,
