@@ -23,7 +23,7 @@
 from pathlib import Path
 
 from penetration.config import check_config, check_config_files
-from penetration.pipeline import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task
+from penetration.pipeline import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task, uncommitted
 from penetration.scenes import scene_names
 from penetration.tasks.reference import checked_outputs
 

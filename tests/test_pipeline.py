@@ -42,3 +42,16 @@ def test_invalid_config_stops_before_jobs():
     text = out.stdout + out.stderr
     assert "projectile.density" in text and "allowed" in text
     assert "Job stats" not in text
+
+
+def test_a_committed_piece_is_not_an_input_and_a_missing_one_is(tmp_path, monkeypatch):
+    """uncommitted: a rule's input function that leaves out the pieces on disk (records read through the params)
+    and names the missing ones, with the rule's wildcards filled in."""
+    from penetration.pipeline import uncommitted
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "full").mkdir()
+    (tmp_path / "full" / "fs_1.csv").write_text("x\n")
+    fn = uncommitted(["{profile}/fs_1.csv", "{profile}/fs_2.csv"])
+    assert fn({"profile": "full"}) == ["full/fs_2.csv"]
+    assert fn({"profile": "ci"}) == ["ci/fs_1.csv", "ci/fs_2.csv"]

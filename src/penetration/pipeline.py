@@ -112,6 +112,14 @@ def study_input(path: str) -> dict:
     return {"path": path, "sha256": file_digest(path)}
 
 
+def uncommitted(paths):
+    """A rule's input function over committed pieces of a study (``paths``, which may name the rule's wildcards):
+    those not on disk yet. A committed piece is a record, read through the rule's params (``study_input``), never a
+    job of the DAG, so that no rerun trigger (a newer source file, the input set it was first built from) asks to
+    rebuild a record whose runs are gone; a missing one is built first."""
+    return lambda w: [p for p in (q.format(**w) for q in paths) if not Path(p).exists()]
+
+
 def run(rule, task_file, inputs, outputs, params):
     """Call the task of ``rule`` in the module whose file is ``task_file`` (used by workflow/scripts/run_task.py)."""
     parts = Path(task_file).with_suffix("").parts

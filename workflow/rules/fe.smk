@@ -308,13 +308,6 @@ FREE_STUDY_PIECES = [f"figures/fe/erosion_free/pieces/{piece}.json" for piece in
 FREE_ERODING_PIECE = "figures/fe/erosion_free/pieces/full/table3.json"
 
 
-def uncommitted(paths):
-    """An input function: those of ``paths`` not on disk yet. A committed piece is read through the rule's params (its
-    path and digest) and is never a job of the DAG, so that no rerun trigger (a newer task file, the input set a piece
-    was first built from) can ask to rebuild a record whose shots are gone."""
-    return lambda w: [p for p in paths if not Path(p).exists()]
-
-
 use rule fe_fig12 as fe_erosion_free_convergence with:
     input: **task("tasks.fe_erosion_free"), reference=config["reference"],
            pieces=uncommitted(FREE_STUDY_PIECES), eroding=uncommitted([FREE_ERODING_PIECE]),

@@ -165,7 +165,8 @@ rule calibrate_cavity_laboratory:
 
 # The fe level's failure strain at a mesh profile calibrated on the laboratory shots (a study), as the cavity level's,
 # its grid in pieces (every shot at one failure strain of the grid, fs_VALUE.csv): a piece is a record, once
-# committed it is read, never rebuilt (delete it to recompute it), so a grid of hours runs over sessions.
+# committed it is read through the params, never rebuilt (delete it to recompute it), so a grid of hours runs over
+# sessions.
 FE_LAB_GRID = [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]]
 
 
@@ -191,13 +192,14 @@ rule fe_laboratory_grid_value:
 
 rule calibrate_fe_laboratory:
     input: **task("tasks.laboratory"), shots=config["validation"]["shots"], reference=config["reference"],
-           grid=lambda w: [f"figures/fe/{w.profile}/laboratory_grid/fs_{v}.csv" for v in FE_LAB_GRID],
+           grid=uncommitted([f"figures/fe/{{profile}}/laboratory_grid/fs_{v}.csv" for v in FE_LAB_GRID]),
     output: csv="figures/fe/{profile}/calibration_fe_laboratory.csv",
             predictions="figures/fe/{profile}/validation_fe_laboratory.csv",
             grid="figures/fe/{profile}/calibration_fe_laboratory_grid.csv",
             timing="figures/timing/calibration_fe_laboratory_{profile}.csv",
     params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)),
             shots_path=config["validation"]["shots"], profile=lambda w: w.profile,
+            grid=lambda w: [study_input(f"figures/fe/{w.profile}/laboratory_grid/fs_{v}.csv") for v in FE_LAB_GRID],
     wildcard_constraints: profile="full|ci",
     threads: 2
     resources: mem_mb=2000, runtime=180

@@ -159,7 +159,7 @@ def calibrate_fe_laboratory(inputs, outputs, params):
     the fe level of users' shots."""
     grid = params.cfg["validation"]["laboratory"]["failure_strains"]
     _calibrate("fe", "failure_strains", inputs, outputs, params, profile=params.profile,
-               grid_runs=lambda rows: grid_runs_from(inputs.grid, rows, grid))
+               grid_runs=lambda rows: grid_runs_from([g["path"] for g in params.grid], rows, grid))
 
 
 @task
