@@ -81,17 +81,32 @@ def levels(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _rows_if_any(read, path):
+    """The rows of an output that a study may not have built yet (none then)."""
+    try:
+        return _rows(read, path)
+    except FileNotFoundError:
+        return []
+
+
 def laboratory(read) -> str:
-    """The cavity level's calibration on the laboratory shots: each fold's fitted scale and its held-out errors,
-    the residual's slopes, and DO1 predicted with it."""
-    fits = _rows(read, "figures/calibration_cavity_laboratory.csv")
-    lines = ["| fold | fitted on | strength scale | fit rms of ln(pred/meas) | held out | held-out median, 90th "
-             "percentile, mean |", "|---|---|---|---|---|---|"]
-    for f in fits:
-        held = (f"{_pct(f['held_out_median_abs_rel_err'])}, {_pct(f['held_out_p90_abs_rel_err'])}, "
-                f"{float(f['held_out_mean_rel_err']) * 100:+.0f} %" if int(f["held_out_shots"]) else "-")
-        lines.append(f"| {f['fold']} | {f['fit_series']} ({f['fit_shots']} shots) | {float(f['value']):.3f} | "
-                     f"{float(f['fit_rms_log_error']):.3f} | {f['held_out_shots']} | {held} |")
+    """The laboratory calibrations (the cavity level's strength scale; the fe level's failure strain at each mesh
+    profile whose grid has run): each fold's fitted value and its held-out errors, the residual's slopes, and DO1
+    predicted with them."""
+    fits = [("cavity", "strength scale", _rows(read, "figures/calibration_cavity_laboratory.csv"), "full")]
+    for profile in ("full", "ci"):
+        rows = _rows_if_any(read, f"figures/fe/{profile}/calibration_fe_laboratory.csv")
+        if rows:
+            fits.append((f"fe ({profile} mesh, {float(rows[0]['elements_across_radius']):g} across)", "failure strain",
+                         rows, profile))
+    lines = ["| level | fold | fitted on | fitted value | fit rms of ln(pred/meas) | held out | held-out median, 90th "
+             "percentile, mean |", "|---|---|---|---|---|---|---|"]
+    for level, name, rows, _ in fits:
+        for f in rows:
+            held = (f"{_pct(f['held_out_median_abs_rel_err'])}, {_pct(f['held_out_p90_abs_rel_err'])}, "
+                    f"{float(f['held_out_mean_rel_err']) * 100:+.0f} %" if int(f["held_out_shots"]) else "-")
+            lines.append(f"| {level} | {f['fold']} | {f['fit_series']} ({f['fit_shots']} shots) | {name} "
+                         f"{float(f['value']):.3f} | {float(f['fit_rms_log_error']):.3f} | {f['held_out_shots']} | {held} |")
     summary = {(r["level"], r["calibration"], r["scoring"]): r for r in
                _rows(read, "figures/fe/full/validation_levels_summary.csv")}
     lab = next(r for k, r in summary.items() if k[:2] == ("cavity", "laboratory") and r["primary"] == "True")
@@ -105,8 +120,22 @@ def laboratory(read) -> str:
               f"series {_ci(lab, 'slope_ln_fc_within_series')}; the analytic level's are "
               f"{_ci(eq9, 'slope_ln_calibre')} and {_ci(eq9, 'slope_ln_fc_within_series')}. "
               "The two calibres are the two series, so the calibre slope is the series' offset as much as a size "
-              "effect.", "",
-              "DO1 (5.1 m) predicted with the laboratory calibrations (`figures/do1_test.csv`): "
+              "effect."]
+    for _, _, rows, profile in fits[1:]:
+        level = f"fe level at the {profile} mesh ({float(rows[0]['elements_across_radius']):g} across)"
+        path = f"figures/fe/{profile}/validation_levels_summary.csv"
+        fe = [r for r in _rows(read, path) if r["level"] == "fe" and r["calibration"] == "laboratory"]
+        if not fe:
+            lines += ["", f"The {level}: its laboratory calibration is not scored in `{path}` yet."]
+            continue
+        scored = "; ".join(f"{r['scoring']} ({r['shots']} shots): median {_pct(r['median_abs_rel_err'])}, 90th "
+                           f"percentile {_pct(r['p90_abs_rel_err'])}, mean {float(r['mean_rel_err']) * 100:+.0f} %"
+                           for r in fe)
+        main = next((r for r in fe if r["primary"] == "True"), fe[0])
+        lines += ["", f"The {level} level out of sample (`{path}`): {scored}. Its residual's slope with ln calibre is "
+                  f"{_ci(main, 'slope_ln_calibre')} and with ln fc inside each series "
+                  f"{_ci(main, 'slope_ln_fc_within_series')}."]
+    lines += ["", "DO1 (5.1 m) predicted with the laboratory calibrations (`figures/do1_test.csv`): "
               + "; ".join(f"{k} {float(r['dop_pred_m']):.2f} m (DO1 {float(r['excess']) * 100:+.0f} % deeper)"
                           for k, r in do1.items()) + "."]
     return "\n".join(lines) + "\n"
