@@ -484,7 +484,31 @@ def validation(read) -> str:
     return "\n".join(lines)
 
 
-BLOCKS = {"levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+def quasi_static(read) -> str:
+    """The erosion-free target's quasi-static check: per pilot hole, the steady force over pi a^2 on each mesh, its
+    refinement and how it stands against the cavity level's sigma_n and the band set before the runs."""
+    rows = _rows(read, "figures/fe/erosion_free/quasi_static.csv")
+    meshes = [k for k in rows[0] if k.startswith("force_over_area_at_")]
+    across = [k.removeprefix("force_over_area_at_").removesuffix("_across_pa") for k in meshes]
+    lines = ["| pilot hole (shank radii) | guide | F / (pi a^2) at " + ", ".join(across) + " across (MPa) | refinement "
+             "| judged range / cavity level's sigma_n | 1-D cylinder, sphere from the hole / sigma_n | within the band |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        sigma = float(r["cavity_level_sigma_n_pa"])
+        order = "" if r["observed_order"] in ("", "nan") else f", observed order {float(r['observed_order']):.2f}"
+        lines.append(f"| {float(r['pilot_hole']):g} | {'yes' if r['pilot_guide'] == 'True' else 'no'} | "
+                     + ", ".join(f"{float(r[k]) / 1e6:.0f}" for k in meshes)
+                     + f" | {r['status']}{order} | {float(r['judged_low_pa']) / sigma:.2f}-"
+                     f"{float(r['judged_high_pa']) / sigma:.2f} | {float(r['cylinder_from_hole_pa']) / sigma:.2f}, "
+                     f"{float(r['sphere_from_hole_pa']) / sigma:.2f} | {r['within_band']} (+-{_pct(r['band'])}) |")
+    lines += ["", f"The cavity level's sigma_n at {float(rows[0]['velocity_ms']):g} m/s is "
+              f"{float(rows[0]['cavity_level_sigma_n_pa']) / 1e6:.0f} MPa (`figures/fe/erosion_free/quasi_static.csv`; "
+              "each run with its cost in `quasi_static_runs.csv`). A sequence in the asymptotic range is judged on its "
+              "Richardson value, any other on the range of its finest three meshes."]
+    return "\n".join(lines) + "\n"
+
+
+BLOCKS = {"quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:

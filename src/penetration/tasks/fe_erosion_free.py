@@ -110,10 +110,11 @@ def fe_quasi_static(inputs, outputs, params):
         else:
             order, status, ext, gci = np.nan, f"incomplete: {upto} meshes ran before one stopped", np.nan, np.nan
         fine = float(ran.force_over_area_pa.iloc[-1]) if len(ran) else np.nan
-        # the finest three meshes that ran: an oscillating sequence is judged on its whole range, not on an
-        # extrapolation (Celik et al. 2008)
+        # the finest three meshes that ran: only a sequence in the asymptotic range is judged on its extrapolation;
+        # an oscillating or a not-asymptotic one (its Richardson value is no estimate) on the range of those three
+        # (Celik et al. 2008)
         last3 = g.force_over_area_pa.to_numpy()[:upto][-3:] if upto >= 3 else np.array([np.nan])
-        low, high = (float(last3.min()), float(last3.max())) if status == "oscillatory" else (ext, ext)
+        low, high = (ext, ext) if status == "asymptotic" else (float(last3.min()), float(last3.max()))
         rows.append({"pilot_hole": hole, "pilot_guide": bool(g.pilot_guide.all()), "velocity_ms": float(params.velocity),
                      **{f"force_over_area_at_{n:g}_across_pa": x for n, x in zip(across, g.force_over_area_pa)},
                      "meshes_stopped": int((g.status == "stopped").sum()), "observed_order": order, "status": status,
