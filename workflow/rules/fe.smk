@@ -292,8 +292,14 @@ def free_piece_shots(w):
     return [] if Path(f"figures/fe/erosion_free/pieces/{w.piece}.json").exists() else FREE_PIECES[w.piece]
 
 
+FREE_PIECE_TASK = task("tasks.fe_erosion_free")
+
+
 rule fe_erosion_free_piece:
-    input: **task("tasks.fe_erosion_free"), shots=free_piece_shots,
+    # a committed piece depends on nothing that can turn newer (its task file as ancient, no code, no shots), so
+    # asking for it by name never deletes the record to rebuild it
+    input: task=ancient(FREE_PIECE_TASK["task"]), shots=free_piece_shots,
+           code=lambda w: [] if Path(f"figures/fe/erosion_free/pieces/{w.piece}.json").exists() else FREE_PIECE_TASK["code"],
     output: json="figures/fe/erosion_free/pieces/{piece}.json",
     params: piece=lambda w: w.piece, expected=lambda w: len(FREE_PIECES[w.piece]),
     wildcard_constraints: piece="|".join(FREE_PIECES),

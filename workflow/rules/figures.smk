@@ -177,8 +177,13 @@ def fe_laboratory_piece_inputs(w):
     return [config["validation"]["shots"], config["reference"]]
 
 
+LAB_PIECE_TASK = task("tasks.laboratory")
+
+
 rule fe_laboratory_grid_value:
-    input: **task("tasks.laboratory"), data=fe_laboratory_piece_inputs,
+    # a committed piece depends on nothing that can turn newer (as fe_erosion_free_piece)
+    input: task=ancient(LAB_PIECE_TASK["task"]), data=fe_laboratory_piece_inputs,
+           code=lambda w: fe_laboratory_piece_inputs(w) and LAB_PIECE_TASK["code"],
     output: csv="figures/fe/{profile}/laboratory_grid/fs_{value}.csv",
     params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)), profile=lambda w: w.profile,
             value=lambda w: float(w.value),
