@@ -97,6 +97,17 @@ def fe_calibration(profile):
     return f"results/fe/{profile}/calibration_h{fe_cfg(profile)['profiles'][profile]['element_size']}.json"
 
 
+def record_inputs(module, record, **runs):
+    """The inputs of a rule whose output is a committed record of a study (a piece): while ``record`` (a path with
+    the rule's wildcards) is missing, its task, code and runs (``runs``: name -> input function); once it is on disk
+    only the task file, as ancient, so that nothing can turn newer and asking for the record by name never deletes
+    it to rebuild it (its task refuses to run without its runs)."""
+    t = task(module)
+    while_missing = lambda f: (lambda w: [] if Path(record.format(**w)).exists() else f(w))
+    return {"task": ancient(t["task"]), "code": while_missing(lambda w: t["code"]),
+            **{name: while_missing(f) for name, f in runs.items()}}
+
+
 include: "workflow/rules/geometry.smk"
 include: "workflow/rules/analytic.smk"
 include: "workflow/rules/trajectory.smk"

@@ -307,25 +307,26 @@ def test_the_quasi_static_task_refines_each_hole_and_judges_the_limit_against_th
     assert t.loc[0.25, "observed_order"] == pytest.approx(2.0, rel=1e-9)
     assert t.loc[0.125, "status"].startswith("incomplete") and math.isnan(t.loc[0.125, "extrapolated_pa"])
     assert not bool(t.loc[0.125, "within_band"])
+
+    def hole_quarter_with(forces):
+        """The task's row of hole 1/4 with its four meshes' forces replaced (every run finished)."""
+        for n, f in zip((4.0, 6.0, 9.0, 13.5), forces):
+            path = tmp_path / f"h0.25_{n}.json"
+            write_json({**load_json(path), "force_over_area_pa": f, "status": "end"}, path)
+        fe_quasi_static(SimpleNamespace(runs=runs), out, SimpleNamespace(velocity=40.0, band=0.25))
+        return pd.read_csv(out.csv).set_index("pilot_hole").loc[0.25]
+
     # an oscillating sequence is judged on the range of its finest three meshes
-    for n, f in ((4.0, 420e6), (6.0, 380e6), (9.0, 330e6), (13.5, 400e6)):
-        path = tmp_path / f"h0.25_{n}.json"
-        write_json({**load_json(path), "force_over_area_pa": f, "status": "end"}, path)
-    fe_quasi_static(SimpleNamespace(runs=runs), out, SimpleNamespace(velocity=40.0, band=0.25))
-    t = pd.read_csv(out.csv).set_index("pilot_hole")
-    assert t.loc[0.25, "status"] == "oscillatory"
-    assert (t.loc[0.25, "judged_low_pa"], t.loc[0.25, "judged_high_pa"]) == (330e6, 400e6)
-    assert not bool(t.loc[0.25, "within_band"])            # 330 MPa is 34 % below 500
+    r = hole_quarter_with((420e6, 380e6, 330e6, 400e6))
+    assert r.status == "oscillatory"
+    assert (r.judged_low_pa, r.judged_high_pa) == (330e6, 400e6)
+    assert not bool(r.within_band)            # 330 MPa is 34 % below 500
     # a sequence that is not in the asymptotic range (its differences grow): its Richardson value, however close to
     # sigma, is no estimate, so it too is judged on the range of the finest three meshes
-    for n, f in ((4.0, 300e6), (6.0, 440e6), (9.0, 395e6), (13.5, 335e6)):
-        path = tmp_path / f"h0.25_{n}.json"
-        write_json({**load_json(path), "force_over_area_pa": f, "status": "end"}, path)
-    fe_quasi_static(SimpleNamespace(runs=runs), out, SimpleNamespace(velocity=40.0, band=0.25))
-    t = pd.read_csv(out.csv).set_index("pilot_hole")
-    assert t.loc[0.25, "status"] == "not asymptotic"
-    assert (t.loc[0.25, "judged_low_pa"], t.loc[0.25, "judged_high_pa"]) == (335e6, 440e6)
-    assert not bool(t.loc[0.25, "within_band"])            # 335 MPa is 33 % below 500
+    r = hole_quarter_with((300e6, 440e6, 395e6, 335e6))
+    assert r.status == "not asymptotic"
+    assert (r.judged_low_pa, r.judged_high_pa) == (335e6, 440e6)
+    assert not bool(r.within_band)            # 335 MPa is 33 % below 500
 
 
 def test_a_study_piece_keeps_every_shot_summary_and_refuses_a_partial_or_forced_rebuild(tmp_path):

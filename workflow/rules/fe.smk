@@ -287,19 +287,12 @@ FREE_PIECES = {**{f"{p}/{scene}": [path.format(profile=p) for path in fe_shots(s
                "full/table3": [path.format(profile="full") for path in fe_shots("table3")]}
 
 
-def free_piece_shots(w):
-    """The shots of a piece that is not committed yet (none for a committed piece: it is a record)."""
-    return [] if Path(f"figures/fe/erosion_free/pieces/{w.piece}.json").exists() else FREE_PIECES[w.piece]
-
-
-FREE_PIECE_TASK = task("tasks.fe_erosion_free")
+FREE_PIECE_INPUTS = record_inputs("tasks.fe_erosion_free", "figures/fe/erosion_free/pieces/{piece}.json",
+                                  shots=lambda w: FREE_PIECES[w.piece])
 
 
 rule fe_erosion_free_piece:
-    # a committed piece depends on nothing that can turn newer (its task file as ancient, no code, no shots), so
-    # asking for it by name never deletes the record to rebuild it
-    input: task=ancient(FREE_PIECE_TASK["task"]), shots=free_piece_shots,
-           code=lambda w: [] if Path(f"figures/fe/erosion_free/pieces/{w.piece}.json").exists() else FREE_PIECE_TASK["code"],
+    input: **FREE_PIECE_INPUTS,
     output: json="figures/fe/erosion_free/pieces/{piece}.json",
     params: piece=lambda w: w.piece, expected=lambda w: len(FREE_PIECES[w.piece]),
     wildcard_constraints: piece="|".join(FREE_PIECES),

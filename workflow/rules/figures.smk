@@ -170,20 +170,12 @@ rule calibrate_cavity_laboratory:
 FE_LAB_GRID = [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]]
 
 
-def fe_laboratory_piece_inputs(w):
-    """A missing piece's data; none for a committed one (its task then refuses to run: a record is not rebuilt)."""
-    if Path(f"figures/fe/{w.profile}/laboratory_grid/fs_{w.value}.csv").exists():
-        return []
-    return [config["validation"]["shots"], config["reference"]]
-
-
-LAB_PIECE_TASK = task("tasks.laboratory")
+LAB_PIECE_INPUTS = record_inputs("tasks.laboratory", "figures/fe/{profile}/laboratory_grid/fs_{value}.csv",
+                                 data=lambda w: [config["validation"]["shots"], config["reference"]])
 
 
 rule fe_laboratory_grid_value:
-    # a committed piece depends on nothing that can turn newer (as fe_erosion_free_piece)
-    input: task=ancient(LAB_PIECE_TASK["task"]), data=fe_laboratory_piece_inputs,
-           code=lambda w: fe_laboratory_piece_inputs(w) and LAB_PIECE_TASK["code"],
+    input: **LAB_PIECE_INPUTS,
     output: csv="figures/fe/{profile}/laboratory_grid/fs_{value}.csv",
     params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)), profile=lambda w: w.profile,
             value=lambda w: float(w.value),
