@@ -326,6 +326,45 @@ def erosion_free(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def erosion_free_status(read) -> str:
+    """The erosion-free grid study's state: its shots (at rest or stopped, eroded mass, energy audit, job time), the
+    per-hole sequences' refinement statuses and GCI goals, and the limits found at zero hole."""
+    base = "figures/fe/erosion_free/"
+    shots = _rows(read, base + "convergence_shots.csv")
+    conv = _rows(read, base + "convergence.csv")
+    holes = _rows(read, base + "convergence_holes.csv")
+    across = sorted({float(r["elements_across"]) for r in shots})
+    finest = [r for r in shots if float(r["elements_across"]) == across[-1]]
+    stopped = [r for r in shots if r["status"] != "rest"]
+    hours = sum(float(r["wall_time_s"]) for r in shots) / 3600
+    times = [float(r["wall_time_s"]) for r in finest]
+    text = (f"*Status* ({len(shots)} shots on meshes of {', '.join(f'{a:g}' for a in across)} elements across, "
+            f"domain {', '.join(sorted({r['domain'] for r in shots}))}, {hours:.1f} h of job time): "
+            f"{len(shots) - len(stopped)} at rest and {len(stopped)} stopped")
+    if stopped:
+        text += " (" + "; ".join(f"{r['nose']} at {float(r['velocity_ms']):.0f} m/s, {float(r['elements_across']):g} "
+                                 f"across, hole {float(r['pilot_hole']):g}" for r in stopped) + ")"
+    text += (f"; eroded mass at most {max(float(r['eroded_mass_kg']) for r in shots):g} kg; energy error at most "
+             f"{max(abs(float(r['energy_error_max'])) for r in shots if r['energy_error_max']):.1e} over the shots at rest and "
+             f"{max(abs(float(r['energy_error_max'])) for r in finest if r['energy_error_max']):.1e} at {across[-1]:g} across, where a shot "
+             f"takes {_span(min(times))} to {_span(max(times))}. ")
+    status = {}
+    for r in conv:
+        status[r["status"]] = status.get(r["status"], 0) + 1
+    met = {q: (sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q), sum(r["quantity"] == q for r in conv))
+           for q in ("depth_m", "depth_ratio")}
+    text += (f"Of the {len(conv)} per-hole sequences (each depth and contrast at each hole), "
+             + ", ".join(f"{v} {k}" for k, v in sorted(status.items()))
+             + f"; the GCI goal is met by {met['depth_m'][0]} of {met['depth_m'][1]} depths and {met['depth_ratio'][0]} "
+             f"of {met['depth_ratio'][1]} contrasts. ")
+    found = {q: (sum(r["limit_found"] == "True" for r in holes if r["quantity"] == q), sum(r["quantity"] == q for r in holes))
+             for q in ("depth_m", "depth_ratio")}
+    text += (f"To zero hole a limit is found for {found['depth_m'][0]} of {found['depth_m'][1]} depths and "
+             f"{found['depth_ratio'][0]} of {found['depth_ratio'][1]} contrasts (`{base}convergence_shots.csv`, "
+             f"`convergence.csv`, `convergence_holes.csv`).\n")
+    return text
+
+
 def erosion_free_depths(read) -> str:
     """The erosion-free target's absolute depths: with Table 1's HJC as stated at zero element size and hole (a
     study), and with one strength scale calibrated on DO1 at one mesh (a calibration), against the paper's Table 3."""
@@ -508,7 +547,7 @@ def quasi_static(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+BLOCKS = {"quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:
