@@ -163,6 +163,19 @@ def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_b
     assert "eroding FE at zero size 1.147" in inc.case and "cavity level 1.031" in inc.case
 
 
+@pytest.mark.parametrize("asymptotic, stopped", [("True", "False"), ("False", "True")])
+def test_erosion_free_rows_read_the_csv_booleans_of_the_mesh_status(asymptotic, stopped):
+    """The study's CSV holds its booleans as text: "False" must read as not asymptotic and no shot stopped."""
+    from penetration.diff import erosion_free_rows
+    refs = load_reference(REF)
+    row = {"quantity": "depth_ratio", "case": "DO/CRH 4.5", "velocity_ms": "800", "at_zero_hole": "1.05",
+           "uncertainty": "0.01", "mesh_status_all_asymptotic": asymptotic, "meshes_stopped": stopped,
+           "hole_status": "asymptotic", "ranking": "holds", "limit_found": "True"}
+    inc, _ = erosion_free_rows(refs, [row], [], [])
+    assert ("not all asymptotic" in inc.case) == (asymptotic == "False")
+    assert ("a shot stopped" in inc.case) == (stopped == "True")
+
+
 @pytest.mark.parametrize("depth, band, status", [(7.9, 0.05, "reproduced"), (5.3, 0.1, "deviates"),
                                                  (7.3, 0.6, "undecided")])
 def test_erosion_free_depth_rows_judge_the_stated_depth_on_its_band_and_call_a_calibrated_one_so(depth, band, status):
