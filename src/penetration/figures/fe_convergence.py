@@ -2,6 +2,8 @@
 target's grid convergence (tasks.fe_erosion_free)."""
 from __future__ import annotations
 
+import textwrap
+
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -85,7 +87,7 @@ def grid_convergence_figure(conv, holes, path, dpi):
     h = 70.0 / across   # mm: the 70 mm shank radius over the elements across
     vs = sorted(conv.velocity_ms.unique())
     hole_sizes = sorted(conv.pilot_hole.unique(), reverse=True)
-    fig, axes = plt.subplots(3, len(vs), figsize=(3.6 * len(vs), 9.0), squeeze=False)
+    fig, axes = plt.subplots(3, len(vs), figsize=(5.2 * len(vs), 11.0), squeeze=False)
     kinds = (("depth_m", NOSE_COLORS, 1.0, 0.0, "depth (m)"),
              ("depth_ratio", CONTRAST_COLORS, 100.0, 1.0, "depth gain of the contrast (%)"))
     for j, v in enumerate(vs):
@@ -163,14 +165,14 @@ def grid_convergence_figure(conv, holes, path, dpi):
     axes[0, -1].legend(fontsize=7, loc="best")
     axes[1, -1].legend(fontsize=7, loc="best")
     axes[2, -1].legend(fontsize=6, loc="best")
-    fig.suptitle("Erosion-free target (Table 1's HJC as stated): Table 3 rows on meshes refined by "
-                 f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius) "
-                 f"at pilot holes of {', '.join(f'{x:g}' for x in hole_sizes)} of it (solid, dashed, dotted)\n"
-                 "squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range, not an estimate); "
-                 "crosses: the paper's simulation (LS-DYNA with erosion)\nbars at 1.6-2.6 mm: each hole's finest value "
-                 "with its least-squares uncertainty (Eça & Hoekstra 2014, over the 4 meshes; cut at the axes)\n"
-                 "bottom: the zero-size values against the "
-                 "pilot hole, extrapolated to zero hole; where the refinement finds no limit, each hole's median and "
-                 "range over its meshes instead", fontsize=9)
-    fig.subplots_adjust(top=0.88, wspace=0.22, hspace=0.3)
+    title = ("Erosion-free target (Table 1's HJC as stated): Table 3 rows on meshes refined by "
+             f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius) "
+             f"at pilot holes of {', '.join(f'{x:g}' for x in hole_sizes)} of it (solid, dashed, dotted). "
+             "Squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range, not an estimate); "
+             "crosses: the paper's simulation (LS-DYNA with erosion); bars at 1.6-2.6 mm: each hole's finest value "
+             "with its least-squares uncertainty (Eça & Hoekstra 2014, over the 4 meshes; cut at the axes). "
+             "Bottom: the zero-size values against the pilot hole, extrapolated to zero hole; where the refinement "
+             "finds no limit, each hole's median and range over its meshes instead.")
+    fig.suptitle("\n".join(textwrap.wrap(title, 70 * len(vs))), fontsize=9)
+    fig.subplots_adjust(top=0.875, wspace=0.2, hspace=0.28)
     save(fig, path, dpi)
