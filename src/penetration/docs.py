@@ -14,6 +14,7 @@ import csv
 import io
 import json
 import re
+import statistics
 import sys
 from pathlib import Path
 
@@ -293,7 +294,7 @@ def erosion_free(read) -> str:
         else:
             value = f"no limit: {lo:.3f}-{hi:.3f}, median {med:.3f}"
             if r.get("ls_low"):
-                value += f"; least squares {float(r['ls_low']):.3f}-{float(r['ls_high']):.3f}"
+                value += f"; least squares {float(r['ls_low']):.3f} to {float(r['ls_high']):.3f}"
             rank = (r["ls_ranking"] + " (least squares)" if r.get("ls_ranking", "undecided") != "undecided"
                     else "undecided: " + r["side_of_1"])
         meshes = "asymptotic" if r["mesh_status_all_asymptotic"] == "True" else "not all asymptotic"
@@ -301,6 +302,13 @@ def erosion_free(read) -> str:
             meshes += "; a shot stopped"
         lines.append(f"| {r['case']} | {float(r['velocity_ms']):.0f} | {float(r['paper_simulated']):.3f} | "
                      f"{value} | {meshes} | {r['hole_status']} | {rank} |")
+    side = {"above": [], "below": [], "inside": []}
+    for r in holes:
+        if r["limit_found"] == "True":
+            continue
+        paper, lo, hi = (float(r[k]) for k in ("paper_simulated", "values_min", "values_max"))
+        where = "above" if paper > hi else "below" if paper < lo else "inside"
+        side[where].append(f"{r['case']} at {float(r['velocity_ms']):.0f} m/s")
     met = {q: sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q) for q in ("depth_m", "depth_ratio")}
     total = {q: sum(r["quantity"] == q for r in conv) for q in ("depth_m", "depth_ratio")}
     status = {}
@@ -311,7 +319,11 @@ def erosion_free(read) -> str:
     hours = sum(float(r["wall_time_sum_s"]) for r in cost) / 3600
     per = "; ".join(f"{float(r['elements_across']):g} across {_span(r['wall_time_mean_s'])}"
                     for r in sorted(cost, key=lambda r: float(r["elements_across"])))
-    lines += ["", f"The band is the larger of the holes' GCI and the meshes' largest. Without a limit, the least-squares "
+    ranges = [f"{k} every mesh's and hole's value: {'; '.join(v)}" for k, v in
+              (("above", side["above"]), ("below", side["below"]), ("inside the range of", side["inside"])) if v]
+    lines += ["", ("Where no limit is found, the paper's simulated ratio lies " + "; ".join(ranges) + ". ")
+              if ranges else ""]
+    lines[-1] += (f"The band is the larger of the holes' GCI and the meshes' largest. Without a limit, the least-squares "
               f"range is the hull of each hole's finest value +- its Eça-Hoekstra uncertainty (over the four meshes; a "
               f"bound at the holes run, not at zero hole). Per hole, the GCI goals "
               f"(depth {100 * float(next(r['gci_goal'] for r in conv if r['quantity'] == 'depth_m')):g} %, contrast "
@@ -322,7 +334,7 @@ def erosion_free(read) -> str:
               f"{across[0]:g}-{across[-1]:g} elements across, {hours:.1f} h of job time; mean per shot: {per}"
               + "".join(f"; the eroding level's same {r['shots']} shots at {float(r['elements_across']):g} across "
                         f"{_span(r['wall_time_mean_s'])}" for r in eroding)
-              + " (`figures/timing/fe_erosion_free_convergence.csv`)."]
+              + " (`figures/timing/fe_erosion_free_convergence.csv`).")
     return "\n".join(lines) + "\n"
 
 
@@ -353,6 +365,14 @@ def erosion_free_status(read) -> str:
         status[r["status"]] = status.get(r["status"], 0) + 1
     met = {q: (sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q), sum(r["quantity"] == q for r in conv))
            for q in ("depth_m", "depth_ratio")}
+    cols = [k for k in conv[0] if k.startswith("value_at_")]
+    steps = {}
+    for q, scale in (("depth_m", None), ("depth_ratio", 100.0)):
+        changes = [[abs(float(r[b]) - float(r[a])) * (scale or 100.0 / float(r[a])) for a, b in zip(cols, cols[1:])]
+                   for r in conv if r["quantity"] == q]
+        steps[q] = ", ".join(f"{statistics.median(c):.2f}" for c in zip(*changes))
+    text += (f"The median change from one mesh to the next is {steps['depth_m']} % for the depths and "
+             f"{steps['depth_ratio']} points for the contrasts (from the coarsest step to the finest). ")
     text += (f"Of the {len(conv)} per-hole sequences (each depth and contrast at each hole), "
              + ", ".join(f"{v} {k}" for k, v in sorted(status.items()))
              + f"; the GCI goal is met by {met['depth_m'][0]} of {met['depth_m'][1]} depths and {met['depth_ratio'][0]} "
@@ -376,8 +396,11 @@ def erosion_free_depths(read) -> str:
               for k in ("values_min", "values_max")]
     stated = "With Table 1's HJC as stated, "
     if ratios:
-        stated += (f"the erosion-free depths at zero element size and hole are {min(ratios):.2f}-{max(ratios):.2f} of "
-                   f"the paper's simulated ones ({len(limit)} of {len(holes)} shots of Table 3)")
+        span = f"{min(ratios):.2f}" if f"{min(ratios):.2f}" == f"{max(ratios):.2f}" else f"{min(ratios):.2f}-{max(ratios):.2f}"
+        stated += (f"the erosion-free depth{'s' if len(limit) > 1 else ''} at zero element size and hole "
+                   f"{'are' if len(limit) > 1 else 'is'} {span} of the paper's simulated one"
+                   f"{'s' if len(limit) > 1 else ''} ({len(limit)} of {len(holes)} shots of Table 3: "
+                   + ", ".join(f"{r['case']} at {float(r['velocity_ms']):.0f} m/s" for r in limit) + ")")
     if spread:
         stated += (("; " if ratios else "") + f"{len(holes) - len(limit)} of the {len(holes)} Table 3 depths have no "
                    f"limit under refinement, and their values on every mesh and hole are {min(spread):.2f}-"
@@ -394,11 +417,14 @@ def erosion_free_depths(read) -> str:
     except FileNotFoundError:   # the calibration study not yet run: the stated depths alone
         return stated + " The DO1 strength-scale calibration of this target is not yet run (rule calibrate_fe_strength_do1).\n"
     over = [float(r["calibrated_over_paper"]) for r in depths]
+    plain = [float(r["stated_over_paper"]) for r in depths]
     return (stated + " One strength scale calibrated on DO1 (a calibration: "
             f"{float(cal['value']):.3f} on the whole HJC strength surface, residual {float(cal['residual_m']) * 100:+.1f} cm "
-            f"on the measured {float(cal['measured_depth_m']):g} m, at {float(cal['elements_across_radius']):g} elements "
-            f"across and hole {float(cal['pilot_hole']):g}) brings them to {min(over):.2f}-{max(over):.2f} of the paper's "
-            f"on that mesh (`{base}calibrated.csv`, `{base}calibration.csv`).\n")
+            f"on the measured {float(cal['measured_depth_m']):g} m after {cal['trials']} trials, at "
+            f"{float(cal['elements_across_radius']):g} elements across and hole {float(cal['pilot_hole']):g}) brings "
+            f"the {len(depths)} shots to {min(over):.2f}-{max(over):.2f} of the paper's on that mesh, against "
+            f"{min(plain):.2f}-{max(plain):.2f} with the stated HJC there (`{base}calibrated.csv`, "
+            f"`{base}calibration.csv`).\n")
 
 
 def erosion_free_window(read) -> str:
@@ -406,15 +432,17 @@ def erosion_free_window(read) -> str:
     domain's, with the equivalence test's interval."""
     import yaml
     base = "figures/fe/erosion_free/"
-    parts = []
+    parts, spread = [], []
     for shot in yaml.safe_load(read("workflow/config.yaml"))["fe_erosion_free"]["window"]["shots"]:
         r = _rows(read, f"{base}window_{shot}_summary.csv")[0]
+        spread += [100 * float(r[f"std_{d}_m"]) / float(r[f"mean_{d}_m"]) for d in ("window", "whole")]
         parts.append(f"{shot.replace('_', ' at ')} m/s {float(r['difference_pct']):+.2f} % ({100 * float(r['confidence']):.0f} % "
                      f"interval {float(r['interval_low_pct']):+.2f} to {float(r['interval_high_pct']):+.2f} %, "
                      f"{'within' if r['within_goal'] == 'True' else 'not within'} +-{float(r['goal_pct']):g} %; "
                      f"{r['realisations']} realisations each)")
     return ("The moving window against the whole domain on the erosion-free target (mean depths): " + "; ".join(parts)
-            + f" (`{base}window_*_summary.csv`).\n")
+            + f". The realisations of one shot spread by {min(spread):.1f}-{max(spread):.1f} % (the standard deviation "
+            f"over its members over their mean depth; `{base}window_*_summary.csv`).\n")
 
 
 def fe_speed(read) -> str:

@@ -100,17 +100,28 @@ def grid_convergence_figure(conv, holes, path, dpi):
                 y = scale * (np.array([r[c] for c in cols]) - offset)
                 ax.plot(h, y, "o", ls=HOLE_STYLES[k % 4], ms=2.5, lw=0.9, color=color,
                         label=r["case"] if k == 0 else None)
-                ax.errorbar([-0.3 - 0.25 * k], [scale * (r["extrapolated"] - offset)], yerr=[scale * r["gci_fine"]],
-                            fmt="s", ms=3.5, color=color, mfc=color if r["status"] == "asymptotic" else "white",
-                            capsize=2)
+                if r["status"] == "asymptotic":   # an estimate: the axes hold it
+                    ax.plot([-0.3 - 0.25 * k], [scale * (r["extrapolated"] - offset)], alpha=0)
             for r in rows[:len(rows) // len(hole_sizes)]:
                 if np.isfinite(r["paper_simulated"]):
                     ax.plot([h.max() + 0.7], [scale * (r["paper_simulated"] - offset)],
                             **{**PAPER_STYLE, "color": colors.get(r["case"], "gray")})
-            # each hole's least-squares interval of its finest value (thin bars right of the finest mesh), drawn
-            # inside the limits the values set: a bar wider than them runs off the axes
+            # the limits are set by the meshes' values, the paper's and the extrapolations in the asymptotic range; a
+            # Richardson value outside the asymptotic range (not an estimate) that falls beyond them is a hollow
+            # triangle at the edge, and every bar is cut at the axes
             ax.autoscale_view()
             lim = ax.get_ylim()
+            for r in rows:
+                k = hole_sizes.index(r["pilot_hole"])
+                color, x = colors.get(r["case"], "gray"), -0.3 - 0.25 * k
+                y = scale * (r["extrapolated"] - offset)
+                if lim[0] <= y <= lim[1]:
+                    ax.errorbar([x], [y], yerr=[scale * r["gci_fine"]], fmt="s", ms=3.5, color=color,
+                                mfc=color if r["status"] == "asymptotic" else "white", capsize=2)
+                elif np.isfinite(y):
+                    edge = lim[1] if y > lim[1] else lim[0]
+                    ax.plot([x], [edge], "^" if y > lim[1] else "v", ms=4.5, color=color, mfc="white", clip_on=False)
+            # each hole's least-squares interval of its finest value (thin bars right of the finest mesh)
             for r in rows:
                 u = r.get("ls_uncertainty", np.nan)
                 if np.isfinite(u):
@@ -168,11 +179,12 @@ def grid_convergence_figure(conv, holes, path, dpi):
     title = ("Erosion-free target (Table 1's HJC as stated): Table 3 rows on meshes refined by "
              f"{across[1] / across[0]:.3g} ({', '.join(f'{n:g}' for n in across)} elements across the shank radius) "
              f"at pilot holes of {', '.join(f'{x:g}' for x in hole_sizes)} of it (solid, dashed, dotted). "
-             "Squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range, not an estimate); "
+             "Squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range, not an estimate; a hollow "
+             "triangle at the edge: such a value beyond the axes); "
              "crosses: the paper's simulation (LS-DYNA with erosion); bars at 1.6-2.6 mm: each hole's finest value "
              "with its least-squares uncertainty (Eça & Hoekstra 2014, over the 4 meshes; cut at the axes). "
              "Bottom: the zero-size values against the pilot hole, extrapolated to zero hole; where the refinement "
              "finds no limit, each hole's median and range over its meshes instead.")
     fig.suptitle("\n".join(textwrap.wrap(title, 70 * len(vs))), fontsize=9)
-    fig.subplots_adjust(top=0.875, wspace=0.2, hspace=0.28)
+    fig.subplots_adjust(top=0.86, wspace=0.2, hspace=0.28)
     save(fig, path, dpi)
