@@ -513,10 +513,14 @@ def contrast_rows(refs, contrasts):
     return rows
 
 
+def _flag(value) -> bool:
+    """A boolean of the erosion-free study's rows, read alike from its CSV (text) and from Python values."""
+    return str(value) == "True"
+
+
 def _limit_found(r) -> bool:
-    """Whether a zero-hole row of the erosion-free study has a limit (a finite extrapolation and band); a CSV's
-    booleans come as text."""
-    return str(r.get("limit_found", True)) == "True" and math.isfinite(float(r["uncertainty"]))
+    """Whether a zero-hole row of the erosion-free study has a limit (a finite extrapolation and band)."""
+    return _flag(r.get("limit_found", True)) and math.isfinite(float(r["uncertainty"]))
 
 
 def _hull(r):
@@ -627,8 +631,8 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         ours, lo, hi = 100 * (ratio - 1), 100 * (ratio - band - 1), 100 * (ratio + band - 1)
         case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: ratio {ratio:.3f} +- "
-                f"{band:.3f}; meshes {'asymptotic' if str(r['mesh_status_all_asymptotic']) == 'True' else 'not all asymptotic'}"
-                f"{' (a shot stopped: refined on the meshes before it)' if str(r.get('meshes_stopped')) == 'True' else ''}; "
+                f"{band:.3f}; meshes {'asymptotic' if _flag(r['mesh_status_all_asymptotic']) else 'not all asymptotic'}"
+                f"{' (a shot stopped: refined on the meshes before it)' if _flag(r.get('meshes_stopped')) else ''}; "
                 f"holes {r['hole_status']}; {'; '.join(beside)}; Table 1 HJC; a study)")
         rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value, ours,
                         _rel(ref.value, ours), 2.0 / abs(ref.value), interval_status(ref.value, lo, hi, 2.0, False)))

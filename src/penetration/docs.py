@@ -10,6 +10,7 @@ block, built from one file.
 from __future__ import annotations
 
 import argparse
+import collections
 import csv
 import io
 import json
@@ -275,6 +276,20 @@ def erosion(read) -> str:
             "`figures/fe/full/summary.json`).\n")
 
 
+def _sequences(conv):
+    """The erosion-free study's per-hole sequences (rows of convergence.csv): the count of each refinement status,
+    and per quantity (depth_m, depth_ratio) the GCI goals met and the sequences."""
+    status = dict(sorted(collections.Counter(r["status"] for r in conv).items()))
+    met = {q: (sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q), sum(r["quantity"] == q for r in conv))
+           for q in ("depth_m", "depth_ratio")}
+    return status, met
+
+
+def _meshes(conv) -> int:
+    """The number of meshes of the erosion-free study (its value_at_* columns)."""
+    return sum(k.startswith("value_at_") for k in conv[0])
+
+
 def erosion_free(read) -> str:
     """The erosion-free FE target's nose contrasts at zero element size and zero pilot hole (a study), with the
     meshes' and the holes' statuses, the GCI goals met and the study's cost."""
@@ -284,8 +299,9 @@ def erosion_free(read) -> str:
     timing = _rows(read, "figures/timing/fe_erosion_free_convergence.csv")
     cost = [r for r in timing if r["formulation"] == "erosion_free"]
     eroding = [r for r in timing if r["formulation"] == "eroding"]
-    lines = ["| contrast | velocity (m/s) | paper's simulation | erosion-free: at zero size and hole, or the range of 4 meshes x 3 holes | meshes | holes | "
-             "ranking (ratio > 1) |", "|---|---|---|---|---|---|---|"]
+    n_holes = len({r["pilot_hole"] for r in conv})
+    lines = ["| contrast | velocity (m/s) | paper's simulation | erosion-free: at zero size and hole, or the range of "
+             f"{_meshes(conv)} meshes x {n_holes} holes | meshes | holes | ranking (ratio > 1) |", "|---|---|---|---|---|---|---|"]
     for r in holes:
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         lo, med, hi = (float(r[k]) for k in ("values_min", "values_median", "values_max"))
@@ -309,11 +325,7 @@ def erosion_free(read) -> str:
         paper, lo, hi = (float(r[k]) for k in ("paper_simulated", "values_min", "values_max"))
         where = "above" if paper > hi else "below" if paper < lo else "inside"
         side[where].append(f"{r['case']} at {float(r['velocity_ms']):.0f} m/s")
-    met = {q: sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q) for q in ("depth_m", "depth_ratio")}
-    total = {q: sum(r["quantity"] == q for r in conv) for q in ("depth_m", "depth_ratio")}
-    status = {}
-    for r in conv:
-        status[r["status"]] = status.get(r["status"], 0) + 1
+    status, met = _sequences(conv)
     across = sorted(float(r["elements_across"]) for r in cost)
     shots = sum(int(r["shots"]) for r in cost)
     hours = sum(float(r["wall_time_sum_s"]) for r in cost) / 3600
@@ -324,12 +336,12 @@ def erosion_free(read) -> str:
     lines += ["", ("Where no limit is found, the paper's simulated ratio lies " + "; ".join(ranges) + ". ")
               if ranges else ""]
     lines[-1] += (f"The band is the larger of the holes' GCI and the meshes' largest. Without a limit, the least-squares "
-              f"range is the hull of each hole's finest value +- its Eça-Hoekstra uncertainty (over the four meshes; a "
+              f"range is the hull of each hole's finest value +- its Eça-Hoekstra uncertainty (over the {_meshes(conv)} meshes; a "
               f"bound at the holes run, not at zero hole). Per hole, the GCI goals "
               f"(depth {100 * float(next(r['gci_goal'] for r in conv if r['quantity'] == 'depth_m')):g} %, contrast "
               f"{100 * float(next(r['gci_goal'] for r in conv if r['quantity'] == 'depth_ratio')):g} point) are met "
-              f"by {met['depth_m']} of {total['depth_m']} depths and {met['depth_ratio']} of {total['depth_ratio']} "
-              f"contrasts; statuses {', '.join(f'{k} {v}' for k, v in sorted(status.items()))} "
+              f"by {met['depth_m'][0]} of {met['depth_m'][1]} depths and {met['depth_ratio'][0]} of {met['depth_ratio'][1]} "
+              f"contrasts; statuses {', '.join(f'{k} {v}' for k, v in status.items())} "
               f"(`{base}convergence.csv`, `{base}convergence_holes.csv`). {shots} shots on meshes of "
               f"{across[0]:g}-{across[-1]:g} elements across, {hours:.1f} h of job time; mean per shot: {per}"
               + "".join(f"; the eroding level's same {r['shots']} shots at {float(r['elements_across']):g} across "
@@ -360,11 +372,7 @@ def erosion_free_status(read) -> str:
              f"{max(abs(float(r['energy_error_max'])) for r in shots if r['energy_error_max']):.1e} over the shots at rest and "
              f"{max(abs(float(r['energy_error_max'])) for r in finest if r['energy_error_max']):.1e} at {across[-1]:g} across, where a shot "
              f"takes {_span(min(times))} to {_span(max(times))}. ")
-    status = {}
-    for r in conv:
-        status[r["status"]] = status.get(r["status"], 0) + 1
-    met = {q: (sum(r["goal_met"] == "True" for r in conv if r["quantity"] == q), sum(r["quantity"] == q for r in conv))
-           for q in ("depth_m", "depth_ratio")}
+    status, met = _sequences(conv)
     cols = [k for k in conv[0] if k.startswith("value_at_")]
     steps = {}
     for q, scale in (("depth_m", None), ("depth_ratio", 100.0)):
@@ -374,7 +382,7 @@ def erosion_free_status(read) -> str:
     text += (f"The median change from one mesh to the next is {steps['depth_m']} % for the depths and "
              f"{steps['depth_ratio']} points for the contrasts (from the coarsest step to the finest). ")
     text += (f"Of the {len(conv)} per-hole sequences (each depth and contrast at each hole), "
-             + ", ".join(f"{v} {k}" for k, v in sorted(status.items()))
+             + ", ".join(f"{v} {k}" for k, v in status.items())
              + f"; the GCI goal is met by {met['depth_m'][0]} of {met['depth_m'][1]} depths and {met['depth_ratio'][0]} "
              f"of {met['depth_ratio'][1]} contrasts. ")
     found = {q: (sum(r["limit_found"] == "True" for r in holes if r["quantity"] == q), sum(r["quantity"] == q for r in holes))
@@ -408,8 +416,9 @@ def erosion_free_depths(read) -> str:
         hulls = [r for r in holes if r["limit_found"] != "True" and r.get("ls_high")]
         below = sum(float(r["ls_high"]) < float(r["paper_simulated"]) for r in hulls)
         if hulls:
+            meshes = _meshes(_rows(read, base + "convergence.csv"))
             stated += (f"; for {len(hulls)} of them every hole has a least-squares interval (Eça-Hoekstra, over the "
-                       f"four meshes), and in {below} the whole hull of those intervals lies below the paper's depth")
+                       f"{meshes} meshes), and in {below} the whole hull of those intervals lies below the paper's depth")
     stated += f" (`{base}convergence_holes.csv`)."
     try:
         cal = _rows(read, base + "calibration.csv")[0]

@@ -182,7 +182,7 @@ def grid_convergence_figure(conv, holes, path, dpi):
              "Squares: Richardson extrapolation with its GCI (hollow: not in the asymptotic range, not an estimate; a hollow "
              "triangle at the edge: such a value beyond the axes); "
              "crosses: the paper's simulation (LS-DYNA with erosion); bars at 1.6-2.6 mm: each hole's finest value "
-             "with its least-squares uncertainty (Eça & Hoekstra 2014, over the 4 meshes; cut at the axes). "
+             f"with its least-squares uncertainty (Eça & Hoekstra 2014, over the {len(cols)} meshes; cut at the axes). "
              "Bottom: the zero-size values against the pilot hole, extrapolated to zero hole; where the refinement "
              "finds no limit, each hole's median and range over its meshes instead.")
     fig.suptitle("\n".join(textwrap.wrap(title, 70 * len(vs))), fontsize=9)
