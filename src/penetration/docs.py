@@ -134,10 +134,16 @@ def laboratory(read) -> str:
                            f"percentile {_pct(r['p90_abs_rel_err'])}, mean {float(r['mean_rel_err']) * 100:+.0f} %"
                            for r in fe)
         main = next((r for r in fe if r["primary"] == "True"), fe[0])
-        lines += ["", f"The {level} level out of sample (`{path}`): {scored}. Its residual's slope with ln calibre is "
+        met = [float(main["median_abs_rel_err"]) <= float(eq9["median_abs_rel_err"]),
+               float(main["p90_abs_rel_err"]) <= 0.20]
+        lines += ["", f"The {level}, out of sample (`{path}`): {scored}. Against the same goals (median "
+                  f"{_pct(eq9['median_abs_rel_err'])}, 90th percentile 20 %, leaving one series out) it meets "
+                  f"{sum(met)} of 2. Its residual's slope with ln calibre is "
                   f"{_ci(main, 'slope_ln_calibre')} and with ln fc inside each series "
                   f"{_ci(main, 'slope_ln_fc_within_series')}."]
-    lines += ["", "DO1 (5.1 m) predicted with the laboratory calibrations (`figures/do1_test.csv`): "
+    measured = {float(r["dop_m"]) for r in do1.values()}
+    lines += ["", f"DO1 ({' and '.join(f'{m:g} m' for m in sorted(measured))}) predicted with the laboratory calibrations "
+              "(`figures/do1_test.csv`): "
               + "; ".join(f"{k} {float(r['dop_pred_m']):.2f} m (DO1 {float(r['excess']) * 100:+.0f} % deeper)"
                           for k, r in do1.items()) + "."]
     return "\n".join(lines) + "\n"

@@ -16,8 +16,8 @@ The concrete of the cavity and fe levels is Table 1's HJC set with the configure
 scaled to the shot's fc and density by the HJC scaling rule of ``concrete`` (``concrete.shot_concrete``).
 
 Calibrations: the cavity level's strength_scale (a factor on the strength surface) fitted on the laboratory shots
-(``laboratory``, the default) or on the DO1 shot (5.1 m at 835 m/s, 48 MPa); the fe level's failure strain from
-DO1, the latter on the calibration's mesh scaled with
+(``laboratory``, the default) or on the DO1 shot (5.1 m at 835 m/s, 48 MPa); the fe level's failure strain likewise,
+fitted per mesh profile (DO1's where a profile has no laboratory record), the latter on the calibration's mesh scaled with
 the projectile: the same elements across the shank radius, and the core,
 window, margins, target radius, output interval, deceleration bins and
 filter cut-off in proportion to the radius (the time scales with the length
