@@ -12,7 +12,7 @@ PANELS = (("table3_other_noses_mean_abs_rel_dev", 100, "mean |deviation| (%)",
           ("contrast_mean_abs_points", 1, "mean |difference| (points)",
            "the paper's simulated nose contrasts\n(3 contrasts x 4 velocities)"),
           ("validation_median_abs_rel_err", 100, "median |error| (%)",
-           "the 25 published development shots\n(no level fitted to them)"))
+           "the 25 published development shots\n(each level scored on shots it was not fitted to)"))
 
 
 def _label(row):

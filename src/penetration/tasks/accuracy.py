@@ -9,8 +9,8 @@ Three prediction errors, each against data no level was calibrated on:
 - the nose contrasts of the paper's simulated Table 3 (DO/CRH 4.5, CRH 4.5/CRH 3, DO/CRH 3 at 500-1200 m/s),
   which no calibration on one shot can set: the mean |difference| in points;
 - the 25 published development shots (the validation): the median |error| of the depth, out of sample (the cavity
-  level at its default laboratory calibration: leave one series out; the other levels are calibrated on DO1 or not
-  at all).
+  and fe levels at their default laboratory calibrations, leaving one series out; a mesh without one at DO1's; the
+  analytic and trajectory levels with a published S).
 
 A level's residual on its own calibration shot is not an accuracy and is not shown here (it stays in
 figures/accuracy_cost.csv, with each solver's convergence against its own finest setting).
