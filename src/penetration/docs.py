@@ -91,6 +91,11 @@ def _rows_if_any(read, path):
         return []
 
 
+# the laboratory validation's goal for the 90th percentile of |error| out of sample (its median's goal is the
+# analytic level's median on the same shots)
+P90_GOAL = 0.20
+
+
 def laboratory(read) -> str:
     """The laboratory calibrations (the cavity level's strength scale; the fe level's failure strain at each mesh
     profile whose grid has run): each fold's fitted value and its held-out errors, the residual's slopes, and DO1
@@ -117,7 +122,7 @@ def laboratory(read) -> str:
     lines += ["", f"Out of sample (leave one series out, all {lab['shots']} shots) the laboratory-calibrated cavity "
               f"level errs by a median {_pct(lab['median_abs_rel_err'])} and a 90th percentile "
               f"{_pct(lab['p90_abs_rel_err'])}, against the goals of the analytic level's "
-              f"{_pct(eq9['median_abs_rel_err'])} and 20 % (`figures/fe/full/validation_levels_summary.csv`). "
+              f"{_pct(eq9['median_abs_rel_err'])} and {_pct(P90_GOAL)} (`figures/fe/full/validation_levels_summary.csv`). "
               f"Its residual's slope with ln calibre is {_ci(lab, 'slope_ln_calibre')} and with ln fc inside each "
               f"series {_ci(lab, 'slope_ln_fc_within_series')}; the analytic level's are "
               f"{_ci(eq9, 'slope_ln_calibre')} and {_ci(eq9, 'slope_ln_fc_within_series')}. "
@@ -135,9 +140,9 @@ def laboratory(read) -> str:
                            for r in fe)
         main = next((r for r in fe if r["primary"] == "True"), fe[0])
         met = [float(main["median_abs_rel_err"]) <= float(eq9["median_abs_rel_err"]),
-               float(main["p90_abs_rel_err"]) <= 0.20]
+               float(main["p90_abs_rel_err"]) <= P90_GOAL]
         lines += ["", f"The {level}, out of sample (`{path}`): {scored}. Against the same goals (median "
-                  f"{_pct(eq9['median_abs_rel_err'])}, 90th percentile 20 %, leaving one series out) it meets "
+                  f"{_pct(eq9['median_abs_rel_err'])}, 90th percentile {_pct(P90_GOAL)}, leaving one series out) it meets "
                   f"{sum(met)} of 2. Its residual's slope with ln calibre is "
                   f"{_ci(main, 'slope_ln_calibre')} and with ln fc inside each series "
                   f"{_ci(main, 'slope_ln_fc_within_series')}."]
@@ -291,9 +296,14 @@ def _sequences(conv):
     return status, met
 
 
+def _mesh_columns(conv) -> list:
+    """The erosion-free study's value_at_* columns of convergence.csv: one per mesh, coarsest first."""
+    return [k for k in conv[0] if k.startswith("value_at_")]
+
+
 def _meshes(conv) -> int:
-    """The number of meshes of the erosion-free study (its value_at_* columns)."""
-    return sum(k.startswith("value_at_") for k in conv[0])
+    """The number of meshes of the erosion-free study."""
+    return len(_mesh_columns(conv))
 
 
 def erosion_free(read) -> str:
@@ -379,7 +389,7 @@ def erosion_free_status(read) -> str:
              f"{max(abs(float(r['energy_error_max'])) for r in finest if r['energy_error_max']):.1e} at {across[-1]:g} across, where a shot "
              f"takes {_span(min(times))} to {_span(max(times))}. ")
     status, met = _sequences(conv)
-    cols = [k for k in conv[0] if k.startswith("value_at_")]
+    cols = _mesh_columns(conv)
     steps = {}
     for q, scale in (("depth_m", None), ("depth_ratio", 100.0)):
         changes = [[abs(float(r[b]) - float(r[a])) * (scale or 100.0 / float(r[a])) for a, b in zip(cols, cols[1:])]
