@@ -189,6 +189,50 @@ def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
     assert r.summary()["tunnel_eroded_share"] == 0.0
 
 
+def test_the_crater_wall_is_ejected_where_it_thins_only_within_the_crater_depth_and_only_when_asked():
+    """rezone.eject below the struck face: a column thinned to 0.1 of the element size is left alone when the
+    crater is not asked for (crater 0) and ejected down to the crater depth when it is, row by row: exactly the
+    elements whose centre lies above that depth; the columns at full width are never touched."""
+    from penetration.fe.rezone import R_EJECT, eject
+    h, nr, nz = 0.01, 5, 12
+    g = Grid.tensor(0.02 + h * np.arange(nr + 1), h * np.arange(nz + 1))
+    X = np.vstack(g.nodes())
+    X[0, 2::nr + 1] = X[0, 1::nr + 1] + 0.1 * h        # column 1 is 0.1 h wide in every row
+    zone = (nr, 0, nz, nr)
+    out = np.zeros(R_COUNT + 1)
+    alive = np.full(g.elements, S.LIVE, np.uint8)
+    assert eject(zone, X, alive, 0.25 * h, 0.02, 0.0, out) == 0 and np.all(alive == S.LIVE)
+    crater = 0.064
+    count = eject(zone, X, alive, 0.25 * h, 0.02, crater, out)
+    rows = int(np.sum(h * (np.arange(nz) + 0.5) < crater))   # 6 rows' centres above the crater depth
+    assert count == rows == out[R_EJECT]
+    marked = np.flatnonzero(alive == S.ERODING)
+    assert np.array_equal(marked, np.arange(rows) * nr + 1)
+
+
+def test_the_crater_wall_is_ejected_only_once_the_tip_is_past_crater_thin_after():
+    """Model.rezone gates the crater's ejection on the projectile's tip: before crater_thin_after nothing below the
+    face goes, after it the thinned crater wall does; a negative crater_thin_after is refused, naming the field."""
+    from penetration.fe.model import Model
+    from penetration.hjc import HJC
+    with pytest.raises(ParameterError, match="crater_thin_after"):
+        Controls(crater_thin_after=-1.0)
+    g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
+    m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
+                                 crater_depth=0.08, crater_thin_after=0.5))
+    nn = g.nr + 1
+    m.X[0, 1::nn] = m.X[0, 0::nn] + 0.1 * m.element_size   # the wall column thinned in every row
+    m.set_window(0.4)
+    m.rezone()
+    assert not np.any(m.alive == S.EJECTED)
+    m.set_window(0.6)
+    m.rezone()
+    zc = m.z[m.conn].mean(axis=1)
+    ejected = np.flatnonzero(m.alive == S.EJECTED)
+    assert ejected.size > 0 and np.all(zc[ejected] < 0.08)
+    assert m.crater_debris_mass == pytest.approx(m.E[S.MASS, ejected].sum(), rel=1e-12)
+
+
 def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_deeper_inside():
     """erosion.retire on the erosion-free target: an element that lost its shape above the struck face is ejected
     (its mass kept on the nodes), one less than crater_depth below it is crater debris (ejected, its mass booked as

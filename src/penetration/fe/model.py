@@ -117,6 +117,7 @@ class Model:
         self.erosion_free = c.erosion_free   # the erosion-free target: its guard ejects, never erodes (fe.erosion)
         self.ejected_mass = 0.0
         self.crater_debris_mass = 0.0   # of the ejected: below the struck face, in the crater (fe.erosion.retire)
+        self.tip = -np.inf   # the projectile tip's depth at the last set_window (m)
         self.E_ejecta = 0.0
         self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.rezone: energy, momentum, moves)
         rz = np.inf if c.rezone_radius is None else c.rezone_radius
@@ -205,6 +206,7 @@ class Model:
 
     def set_window(self, Zt):
         """Move the window of active rows with the projectile's tip (``window.follow``)."""
+        self.tip = Zt
         window.follow(self, Zt)
 
     def drop_nodes(self, nodes):
@@ -223,8 +225,10 @@ class Model:
         window's zone (``fe.rezone``); returns 0 or the element that stopped the remap."""
         c = self.controls
         zone = (self.nr, self.j0, self.j1, self.rezone_columns)
+        thin_crater = c.crater_thin_after is not None and self.tip > c.crater_thin_after
+        crater = (c.crater_depth or 0.0) if thin_crater else 0.0
         if c.eject_height is not None and _rezone.eject(zone, self.X, self.alive, c.eject_length * self.element_size,
-                                                        c.eject_height, self.remapped):
+                                                        c.eject_height, crater, self.remapped):
             self.retire_eroded()
         state = self.nstate
         if self.presc_i.size:   # a node whose velocity is prescribed stays where its material is

@@ -125,20 +125,23 @@ def _thin(X, nr, e, length):
 
 
 @njit(cache=True)
-def eject(zone, X, alive, length, height, out):
+def eject(zone, X, alive, length, height, crater, out):
     """Mark for ejection (ERODING; ``fe.erosion.retire`` books them as ejecta) the live elements of the window's rows
     whose centre lies above the struck face (z < 0) and that are thinner than ``length`` or nearly inverted, or
     whose centre has flown more than ``height`` above it: the lip the nose throws out, which would otherwise set the
-    time step. Returns how many."""
+    time step. With ``crater`` > 0 (m), those thinner than ``length`` or nearly inverted whose centre lies less than
+    ``crater`` below the face are ejected too: the crater's wall, thinning as it flows up and out behind the
+    projectile. Returns how many."""
     nr, j0, j1, i_max = zone
+    limit = max(crater, 0.0)
     count = 0
     for j in range(j0, j1):
-        above = False
-        for i in range(nr + 1):   # a row with no node above the face has no element to eject
-            if X[1, j * (nr + 1) + i] < 0.0 or X[1, (j + 1) * (nr + 1) + i] < 0.0:
-                above = True
+        near = False
+        for i in range(nr + 1):   # a row with no node above the limit has no element to eject
+            if X[1, j * (nr + 1) + i] < limit or X[1, (j + 1) * (nr + 1) + i] < limit:
+                near = True
                 break
-        if not above:
+        if not near:
             continue
         for i in range(nr):
             e = j * nr + i
@@ -146,7 +149,7 @@ def eject(zone, X, alive, length, height, out):
                 continue
             a, b, c, d = _nodes_of(nr, e)
             zc = 0.25 * (X[1, a] + X[1, b] + X[1, c] + X[1, d])
-            if zc < -height or (zc < 0.0 and _thin(X, nr, e, length)):
+            if zc < -height or (zc < limit and _thin(X, nr, e, length)):
                 alive[e] = ERODING
                 count += 1
     out[R_EJECT] = count

@@ -47,12 +47,15 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
                        window_ahead=settings.window_ahead, window_behind=behind)
     if target.formulation == "erosion_free":
         # rezoned out to twice the core (the crater's heave reaches past the core); what flies farther than the shank
-        # radius above the struck face, or loses its shape
-        # above it, is ejected (fe.rezone.eject, fe.erosion)
+        # radius above the struck face, or loses its shape above it, is ejected (fe.rezone.eject, fe.erosion); so is
+        # what thins in the crater (down to four shank radii) once the whole projectile has passed below it
+        crater = 4.0 * nose.radius if controls.crater_depth is None else controls.crater_depth
         controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False, pilot_guide=target.pilot_guide,
                            rezone_radius=2.0 * spec.core_radius,
                            eject_height=nose.radius if controls.eject_height is None else controls.eject_height,
-                           crater_depth=4.0 * nose.radius if controls.crater_depth is None else controls.crater_depth)
+                           crater_depth=crater,
+                           crater_thin_after=(crater + settings.body_length if controls.crater_thin_after is None
+                                              else controls.crater_thin_after))
     return Model(build(spec), material, controls)
 
 

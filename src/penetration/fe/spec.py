@@ -65,6 +65,8 @@ class Controls:
     pilot_guide: bool = False           # a rigid frictionless guide fills the pilot hole: its wall nodes keep r >= r0
     crater_depth: float | None = None   # m: an element that loses its shape less than this below the struck face is
     #                                     crater debris, ejected like the lip (None: none; deeper ones stop the run)
+    crater_thin_after: float | None = None  # m: once the tip is deeper than this, an element of the crater thinner
+    #                                     than eject_length element sizes is crater debris too (None: never)
 
     def __post_init__(self):
         if not 0.0 < self.dt_factor <= 1.0:
@@ -98,6 +100,8 @@ class Controls:
             raise ParameterError("fe controls", "eject_height", self.eject_height, "> 0 (m) or None")
         if self.crater_depth is not None and not self.crater_depth >= 0:
             raise ParameterError("fe controls", "crater_depth", self.crater_depth, ">= 0 (m) or None")
+        if self.crater_thin_after is not None and not self.crater_thin_after >= 0:
+            raise ParameterError("fe controls", "crater_thin_after", self.crater_thin_after, ">= 0 (m) or None")
         if self.rezone_radius is not None and not self.rezone_radius > 0:
             raise ParameterError("fe controls", "rezone_radius", self.rezone_radius, "> 0 (m) or None")
 
