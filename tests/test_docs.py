@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT, committed, committed_files
-from penetration.docs import BLOCK, BLOCKS, render
+from penetration.docs import BLOCK, BLOCKS, next_mesh_cost, render
 
 DOCUMENTS = ["README.md"] + [p for p in committed_files("docs") if p.endswith(".md")]
 
@@ -26,3 +26,16 @@ def test_a_stale_block_is_found(tmp_path):
     assert render(text, committed) != text
     with pytest.raises(KeyError, match="known"):
         render("<!-- generated: nothing -->\n<!-- end generated -->", committed)
+
+
+def test_the_next_mesh_cost_follows_a_power_law_of_the_elements_across():
+    # shots whose job time is exactly 2 s * n**3 on meshes refined by 1.25: the fit recovers the power 3, and the
+    # next mesh (20 * 1.25 = 25 across) costs the finest mesh's 3 shots scaled by 1.25**3
+    shots = [{"elements_across": n, "wall_time_s": 2.0 * n ** 3 * k} for n in (8.192, 10.24, 12.8, 16.0, 20.0)
+             for k in (0.5, 1.0, 1.5)]
+    following, power, seconds = next_mesh_cost(shots)
+    assert following == pytest.approx(25.0)
+    assert power == pytest.approx(3.0, rel=1e-12)
+    assert seconds == pytest.approx(3 * 2.0 * 25.0 ** 3, rel=1e-12)
+    with pytest.raises(ValueError, match="elements_across"):
+        next_mesh_cost(shots[:3])

@@ -14,6 +14,7 @@ import collections
 import csv
 import io
 import json
+import math
 import re
 import statistics
 import sys
@@ -366,6 +367,23 @@ def erosion_free(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def next_mesh_cost(shots) -> tuple:
+    """The grid study's next mesh and its cost from its shots (rows with elements_across and wall_time_s, >= 2
+    meshes): the next mesh refined by the finest step's ratio again, the power p of a least-squares fit of the
+    meshes' mean shot time against the elements across on log-log axes, and the finest mesh's summed job time
+    scaled by ratio ** p (s)."""
+    across = sorted({float(r["elements_across"]) for r in shots})
+    if len(across) < 2:
+        raise ValueError(f"elements_across: the cost fit needs shots on at least 2 meshes, got {len(across)}")
+    logs = [(math.log(a), math.log(statistics.fmean(float(r["wall_time_s"]) for r in shots
+                                                    if float(r["elements_across"]) == a))) for a in across]
+    mx, my = (statistics.fmean(v) for v in zip(*logs))
+    power = sum((x - mx) * (y - my) for x, y in logs) / sum((x - mx) ** 2 for x, _ in logs)
+    ratio = across[-1] / across[-2]
+    finest = sum(float(r["wall_time_s"]) for r in shots if float(r["elements_across"]) == across[-1])
+    return across[-1] * ratio, power, finest * ratio ** power
+
+
 def erosion_free_status(read) -> str:
     """The erosion-free grid study's state: its shots (at rest or stopped, eroded mass, energy audit, job time), the
     per-hole sequences' refinement statuses and GCI goals, and the limits found at zero hole."""
@@ -401,6 +419,13 @@ def erosion_free_status(read) -> str:
              + ", ".join(f"{v} {k}" for k, v in status.items())
              + f"; the GCI goal is met by {met['depth_m'][0]} of {met['depth_m'][1]} depths and {met['depth_ratio'][0]} "
              f"of {met['depth_ratio'][1]} contrasts. ")
+    if any(v for k, v in status.items() if k != "asymptotic") and len(across) >= 3:
+        following, power, seconds = next_mesh_cost(shots)
+        text += (f"Not every sequence is in the asymptotic range, so the study's next mesh would be "
+                 f"{following:g} across (refined by {following / across[-1]:g} again): with a shot's mean job time "
+                 f"growing as the {power:.1f} power of the elements across (fitted over the {len(across)} meshes), its "
+                 f"{len(finest)} shots would take about {seconds / 3600:.0f} h of job time, against "
+                 f"{sum(times) / 3600:.1f} h at {across[-1]:g} across. ")
     found = {q: (sum(r["limit_found"] == "True" for r in holes if r["quantity"] == q), sum(r["quantity"] == q for r in holes))
              for q in ("depth_m", "depth_ratio")}
     text += (f"To zero hole a limit is found for {found['depth_m'][0]} of {found['depth_m'][1]} depths and "
