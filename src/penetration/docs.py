@@ -410,9 +410,10 @@ def erosion_free_status(read) -> str:
     cols = _mesh_columns(conv)
     steps = {}
     for q, scale in (("depth_m", None), ("depth_ratio", 100.0)):
-        changes = [[abs(float(r[b]) - float(r[a])) * (scale or 100.0 / float(r[a])) for a, b in zip(cols, cols[1:])]
-                   for r in conv if r["quantity"] == q]
-        steps[q] = ", ".join(f"{statistics.median(c):.2f}" for c in zip(*changes))
+        # each step's median over the sequences that have both meshes (a stopped shot leaves its mesh empty)
+        per_step = [[abs(float(r[b]) - float(r[a])) * (scale or 100.0 / float(r[a]))
+                     for r in conv if r["quantity"] == q and r[a] and r[b]] for a, b in zip(cols, cols[1:])]
+        steps[q] = ", ".join(f"{statistics.median(c):.2f}" for c in per_step)
     text += (f"The median change from one mesh to the next is {steps['depth_m']} % for the depths and "
              f"{steps['depth_ratio']} points for the contrasts (from the coarsest step to the finest). ")
     text += (f"Of the {len(conv)} per-hole sequences (each depth and contrast at each hole), "

@@ -66,7 +66,15 @@ def _free(ax, name, free):
     if len(b):   # no limit under refinement: every mesh's and hole's value, their range and median (not an interval)
         ax.errorbar(b.velocity_ms - 15, b.values_median, yerr=[b.values_median - b.values_min, b.values_max - b.values_median],
                     fmt="D", ms=4, mfc="white", color=FREE_COLOR, capsize=2, lw=1,
-                    label="fe, erosion-free target: no limit; range of 4 meshes x 3 pilot holes, median (a study)")
+                    label=f"fe, erosion-free target: no limit; range of the {_count(free)} values over its "
+                          "meshes and pilot holes, median (a study)")
+
+
+def _count(free) -> str:
+    """How many values the ranges of the contrasts without a limit span: one number, or the least and most."""
+    values = free.loc[(free.quantity == "depth_ratio") & (free.limit_found.astype(str) != "True"), "values"]
+    lo, hi = int(values.min()), int(values.max())
+    return f"{lo}" if lo == hi else f"{lo}-{hi}"
 
 
 @task
