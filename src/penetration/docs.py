@@ -375,10 +375,8 @@ def next_mesh_cost(shots) -> tuple:
     across = sorted({float(r["elements_across"]) for r in shots})
     if len(across) < 2:
         raise ValueError(f"elements_across: the cost fit needs shots on at least 2 meshes, got {len(across)}")
-    logs = [(math.log(a), math.log(statistics.fmean(float(r["wall_time_s"]) for r in shots
-                                                    if float(r["elements_across"]) == a))) for a in across]
-    mx, my = (statistics.fmean(v) for v in zip(*logs))
-    power = sum((x - mx) * (y - my) for x, y in logs) / sum((x - mx) ** 2 for x, _ in logs)
+    means = [statistics.fmean(float(r["wall_time_s"]) for r in shots if float(r["elements_across"]) == a) for a in across]
+    power = statistics.linear_regression([math.log(a) for a in across], [math.log(m) for m in means]).slope
     ratio = across[-1] / across[-2]
     finest = sum(float(r["wall_time_s"]) for r in shots if float(r["elements_across"]) == across[-1])
     return across[-1] * ratio, power, finest * ratio ** power
