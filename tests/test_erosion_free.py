@@ -260,6 +260,43 @@ def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_
         retire(m)
 
 
+def test_the_guard_ejects_a_wall_element_behind_the_tail_as_wall_debris_and_stops_on_one_within_reach():
+    """erosion.retire below the crater: an element that lost its shape with every node more than wall_debris_behind
+    above the tip (behind the projectile's tail) is wall debris (ejected, its mass kept on the nodes and booked as
+    wall debris, not as crater debris); one with a node within that reach of the tip still stops the run, and so does
+    any deep one when wall_debris_behind is None; a negative wall_debris_behind is refused, naming the field."""
+    from penetration.fe.erosion import InsideTarget, retire
+    from penetration.fe.model import Model
+    from penetration.hjc import HJC
+    with pytest.raises(ParameterError, match="wall_debris_behind"):
+        Controls(wall_debris_behind=-0.1)
+    g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
+
+    def model(behind):
+        m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
+                                     crater_depth=0.08, wall_debris_behind=behind))
+        m.set_window(0.25)      # the tip 0.25 m deep: its tail, 0.1 m behind it, at 0.15 m
+        return m
+
+    m = model(0.1)
+    zc = m.z[m.conn].mean(axis=1)
+    top = m.z[m.conn].max(axis=1)
+    wall = int(np.flatnonzero((zc > 0.1) & (top < 0.15))[0])     # below the crater, behind the tail
+    near = int(np.flatnonzero((zc > 0.1) & (top > 0.15) & (top < 0.2))[0])   # below the crater, within reach
+    total = m.mass.sum()
+    m.alive[wall] = S.ERODING
+    assert retire(m) == 1
+    assert m.alive[wall] == S.EJECTED and m.mass.sum() == total and m.eroded_mass == 0.0
+    assert m.wall_debris_mass == pytest.approx(m.E[S.MASS, wall], rel=1e-15) and m.crater_debris_mass == 0.0
+    m.alive[near] = S.ERODING
+    with pytest.raises(InsideTarget, match=f"element {near} "):
+        retire(m)
+    m = model(None)
+    m.alive[wall] = S.ERODING
+    with pytest.raises(InsideTarget, match=f"element {wall} "):
+        retire(m)
+
+
 def test_boundary_nodes_slide_along_their_boundary_and_take_a_linear_velocity_exactly():
     """Struck-face and tunnel-wall nodes unevenly spaced slide along their straight boundary (r or z unchanged)
     toward the middle of their neighbours, and take the velocity of a linear field at their new place from their two

@@ -104,6 +104,20 @@ def test_the_study_refuses_meshes_not_refined_by_one_ratio_and_another_formulati
         grid_study.shot_rows(mixed, ACROSS)
 
 
+def test_a_record_from_before_the_wall_debris_rule_reads_as_none_and_a_later_one_keeps_its_value():
+    """shot_rows: a shot's record without wall_debris_mass_kg (run before the rule, when such a loss stopped the run)
+    reads as 0 kg; a record with it keeps its value; every other column of the record is required."""
+    data = shots()
+    data[0]["wall_debris_mass_kg"] = 0.002
+    s = grid_study.shot_rows(data, ACROSS)
+    first = ((s.profile == data[0]["profile"]) & (s.nose == data[0]["nose"]) & (s.velocity_ms == data[0]["velocity"])
+             & (s.pilot_hole == data[0]["target"]["pilot_hole"]))
+    assert first.sum() == 1 and (s.wall_debris_mass_kg[first] == 0.002).all() and (s.wall_debris_mass_kg[~first] == 0.0).all()
+    del data[1]["crater_debris_mass_kg"]
+    with pytest.raises(KeyError, match="crater_debris_mass_kg"):
+        grid_study.shot_rows(data, ACROSS)
+
+
 def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():
     """A shot that stopped (no depth) at the finest mesh: its depth and the contrasts it enters are refined on the
     three coarser meshes (status stopped, their order and limit), the other noses' as before; stopped at the

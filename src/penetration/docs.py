@@ -400,7 +400,13 @@ def erosion_free_status(read) -> str:
     if stopped:
         text += " (" + "; ".join(f"{r['nose']} at {float(r['velocity_ms']):.0f} m/s, {float(r['elements_across']):g} "
                                  f"across, hole {float(r['pilot_hole']):g}" for r in stopped) + ")"
-    text += (f"; eroded mass at most {max(float(r['eroded_mass_kg']) for r in shots):g} kg; energy error at most "
+    rest = [r for r in shots if r["status"] == "rest"]
+    walled = [r for r in rest if float(r.get("wall_debris_mass_kg") or 0.0) > 0.0]
+    text += (f"; eroded mass at most {max(float(r['eroded_mass_kg']) for r in shots):g} kg; of the ejected, at most "
+             f"{max((float(r['crater_debris_mass_kg']) for r in rest), default=0.0):.2f} kg of crater debris in a shot, and wall debris "
+             f"behind the tail in {len(walled)} shots"
+             + (f" (at most {max(float(r['wall_debris_mass_kg']) for r in walled) * 1000:.1f} g)" if walled else "")
+             + f"; energy error at most "
              f"{max(abs(float(r['energy_error_max'])) for r in shots if r['energy_error_max']):.1e} over the shots at rest and "
              f"{max(abs(float(r['energy_error_max'])) for r in finest if r['energy_error_max']):.1e} at {across[-1]:g} across, where a shot "
              f"takes {_span(min(times))} to {_span(max(times))}. ")
@@ -427,9 +433,12 @@ def erosion_free_status(read) -> str:
                  f"{sum(times) / 3600:.1f} h at {across[-1]:g} across. ")
     found = {q: (sum(r["limit_found"] == "True" for r in holes if r["quantity"] == q), sum(r["quantity"] == q for r in holes))
              for q in ("depth_m", "depth_ratio")}
-    text += (f"To zero hole a limit is found for {found['depth_m'][0]} of {found['depth_m'][1]} depths and "
-             f"{found['depth_ratio'][0]} of {found['depth_ratio'][1]} contrasts (`{base}convergence_shots.csv`, "
-             f"`convergence.csv`, `convergence_holes.csv`).\n")
+    shown = sum(r["limit_found"] == "True" and r["mesh_status_all_asymptotic"] == "True" and r["hole_status"] == "asymptotic"
+                for r in holes)
+    text += (f"To zero hole a limit with a GCI band is found for {found['depth_m'][0]} of {found['depth_m'][1]} depths "
+             f"and {found['depth_ratio'][0]} of {found['depth_ratio'][1]} contrasts, {shown} of them from sequences "
+             f"all in the asymptotic range (`{base}convergence_shots.csv`, `convergence.csv`, "
+             f"`convergence_holes.csv`).\n")
     return text
 
 

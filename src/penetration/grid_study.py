@@ -23,7 +23,11 @@ from .mesh_convergence import MONOTONE, grid_refinement, least_squares_uncertain
 STOPPED = "stopped"   # a shot of the sequence stopped (tasks.fe.fe_shot's record): refined up to it, no goal met
 
 SHOT_COLUMNS = ("depth_m", "wall_time_s", "steps", "elements", "energy_error_max", "eroded_mass_kg",
-                "ejected_mass_kg", "crater_debris_mass_kg", "remap_energy_j", "status", "diagnostic")
+                "ejected_mass_kg", "crater_debris_mass_kg", "wall_debris_mass_kg", "remap_energy_j", "status",
+                "diagnostic")
+# a shot's record from before the wall-debris rule (fe.spec.Controls.wall_debris_behind) has no wall debris: an
+# element that lost its shape there stopped the run instead
+DEFAULTS = {"diagnostic": "", "wall_debris_mass_kg": 0.0}
 
 
 def shot_rows(shots, across) -> pd.DataFrame:
@@ -41,7 +45,7 @@ def shot_rows(shots, across) -> pd.DataFrame:
                      "elements_across": float(across[s["profile"]]), "element_size_m": s["element_size"],
                      # a record from before the key ran with the moving window
                      "domain": s.get("domain", "window"), "nose": s["nose"], "velocity_ms": float(s["velocity"]),
-                     **{k: s.get(k, "") if k == "diagnostic" else s[k] for k in SHOT_COLUMNS}})
+                     **{k: s.get(k, DEFAULTS[k]) if k in DEFAULTS else s[k] for k in SHOT_COLUMNS}})
     domains = sorted({r["domain"] for r in rows})
     if len(domains) > 1:
         raise ValueError(f"grid study: shots computed on domains {domains}; allowed: one (a window biases a depth by "

@@ -55,6 +55,7 @@ class Audit:
                    energy_error=(total - self.E0) / scale if scale > 0 else 0.0, momentum_z=pz,
                    momentum_error=(pz - self.P0) / abs(self.P0) if self.P0 != 0 else pz, eroded_mass=m.eroded_mass,
                    ejected_mass=m.ejected_mass, crater_debris_mass=m.crater_debris_mass,
+                   wall_debris_mass=m.wall_debris_mass,
                    dropped_mass=m.dropped_mass, window_mass=m.window_mass, depth=p[B_TIP], velocity=p[B_VELOCITY], dt=dt,
                    alive=int((m.alive == LIVE).sum()),
                    **{f"dt_share_{name}": (steps[c] / n if n else 0.0) for c, name in CRITERIA.items()},

@@ -36,15 +36,22 @@ def retire(model):
         return 0
     if model.erosion_free:
         # the guard's elements are ejecta above the struck face and debris in the crater (down to crater_depth below
-        # it, where concrete spalls from the free surface): none deeper inside the target may go
+        # it, where concrete spalls from the free surface) or, deeper, of the tunnel's wall behind the projectile's
+        # tail (wall_debris_behind above the tip: out of the projectile's reach); none other inside the target may go
         zc = model.z[model.conn[just]].mean(axis=1)
         crater = model.controls.crater_depth or 0.0
         deep = just[zc >= crater]
+        behind = model.controls.wall_debris_behind
+        wall = deep[:0]
+        if deep.size and behind is not None:
+            reach = model.z[model.conn[deep]].max(axis=1) < model.tip - behind
+            wall, deep = deep[reach], deep[~reach]
         if deep.size:
             raise InsideTarget(f"{model.where(int(deep[0]))} lost its shape inside the target at t = {model.t:.6g} s")
+        model.wall_debris_mass += float(model.E[MASS, wall].sum())
         model.alive[just] = EJECTED
         model.ejected_mass += float(model.E[MASS, just].sum())
-        model.crater_debris_mass += float(model.E[MASS, just[zc >= 0.0]].sum())
+        model.crater_debris_mass += float(model.E[MASS, just[(zc >= 0.0) & (zc < crater)]].sum())
         model.E_ejecta += float(model.E[IE, just].sum())
     else:
         model.alive[just] = ERODED

@@ -117,6 +117,7 @@ class Model:
         self.erosion_free = c.erosion_free   # the erosion-free target: its guard ejects, never erodes (fe.erosion)
         self.ejected_mass = 0.0
         self.crater_debris_mass = 0.0   # of the ejected: below the struck face, in the crater (fe.erosion.retire)
+        self.wall_debris_mass = 0.0     # of the ejected: the tunnel's wall deeper, behind the tail (fe.erosion.retire)
         self.tip = -np.inf   # the projectile tip's depth at the last set_window (m)
         self.E_ejecta = 0.0
         self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.rezone: energy, momentum, moves)

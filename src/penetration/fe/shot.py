@@ -48,14 +48,17 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
     if target.formulation == "erosion_free":
         # rezoned out to twice the core (the crater's heave reaches past the core); what flies farther than the shank
         # radius above the struck face, or loses its shape above it, is ejected (fe.rezone.eject, fe.erosion); so is
-        # what thins in the crater (down to four shank radii) once the whole projectile has passed below it
+        # what thins in the crater (down to four shank radii) once the whole projectile has passed below it; deeper,
+        # an element of the tunnel's wall that loses its shape behind the projectile's tail is wall debris
         crater = 4.0 * nose.radius if controls.crater_depth is None else controls.crater_depth
         controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False, pilot_guide=target.pilot_guide,
                            rezone_radius=2.0 * spec.core_radius,
                            eject_height=nose.radius if controls.eject_height is None else controls.eject_height,
                            crater_depth=crater,
                            crater_thin_after=(crater + settings.body_length if controls.crater_thin_after is None
-                                              else controls.crater_thin_after))
+                                              else controls.crater_thin_after),
+                           wall_debris_behind=(settings.body_length if controls.wall_debris_behind is None
+                                               else controls.wall_debris_behind))
     return Model(build(spec), material, controls)
 
 
@@ -152,6 +155,7 @@ class ShotResult:
                 "contact_loss_fraction": last["contact"] / max(last["total"], 1e-300), "attempts": self.attempts,
                 "tunnel_eroded_share": self.tunnel_eroded_share, "ejected_mass_kg": last.get("ejected_mass", 0.0),
                 "crater_debris_mass_kg": last.get("crater_debris_mass", 0.0),
+                "wall_debris_mass_kg": last.get("wall_debris_mass", 0.0),
                 "remap_energy_j": last.get("remap", 0.0),
                 **{f"dt_share_{k}": v for k, v in self.dt_shares.items()}, "dt_control": self.dt_control}
 

@@ -67,6 +67,9 @@ class Controls:
     #                                     crater debris, ejected like the lip (None: none; deeper ones stop the run)
     crater_thin_after: float | None = None  # m: once the tip is deeper than this, an element of the crater thinner
     #                                     than eject_length element sizes is crater debris too (None: never)
+    wall_debris_behind: float | None = None  # m: an element deeper than the crater that loses its shape with every
+    #                                     node more than this above the tip (behind the projectile's tail, out of its
+    #                                     reach) is wall debris, ejected like the crater's (None: it stops the run)
 
     def __post_init__(self):
         if not 0.0 < self.dt_factor <= 1.0:
@@ -102,6 +105,8 @@ class Controls:
             raise ParameterError("fe controls", "crater_depth", self.crater_depth, ">= 0 (m) or None")
         if self.crater_thin_after is not None and not self.crater_thin_after >= 0:
             raise ParameterError("fe controls", "crater_thin_after", self.crater_thin_after, ">= 0 (m) or None")
+        if self.wall_debris_behind is not None and not self.wall_debris_behind >= 0:
+            raise ParameterError("fe controls", "wall_debris_behind", self.wall_debris_behind, ">= 0 (m) or None")
         if self.rezone_radius is not None and not self.rezone_radius > 0:
             raise ParameterError("fe controls", "rezone_radius", self.rezone_radius, "> 0 (m) or None")
 

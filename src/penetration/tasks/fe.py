@@ -204,7 +204,7 @@ def _stopped_shot(outputs, params, sc, stop, wall):
                "domain": domain_of(settings),
                "status": "stopped", "diagnostic": str(stop), "depth_m": nan, "wall_time_s": wall, "steps": nan,
                "elements": nan, "energy_error_max": nan, "eroded_mass_kg": 0.0, "ejected_mass_kg": nan,
-               "crater_debris_mass_kg": nan, "remap_energy_j": nan}
+               "crater_debris_mass_kg": nan, "wall_debris_mass_kg": nan, "remap_energy_j": nan}
     write_csv(pd.DataFrame(columns=["t", "depth", "velocity", "deceleration_raw", "deceleration"]), outputs.histories)
     write_csv(pd.DataFrame(columns=["r0", "z0", "r", "z", "damage", "eps_p", "state"]), outputs.fields)
     write_csv(pd.DataFrame(columns=["t"]), outputs.audit)
