@@ -401,7 +401,7 @@ def erosion_free_status(read) -> str:
         text += " (" + "; ".join(f"{r['nose']} at {float(r['velocity_ms']):.0f} m/s, {float(r['elements_across']):g} "
                                  f"across, hole {float(r['pilot_hole']):g}" for r in stopped) + ")"
     rest = [r for r in shots if r["status"] == "rest"]
-    walled = [r for r in rest if float(r.get("wall_debris_mass_kg") or 0.0) > 0.0]
+    walled = [r for r in rest if float(r["wall_debris_mass_kg"]) > 0.0]
     text += (f"; eroded mass at most {max(float(r['eroded_mass_kg']) for r in shots):g} kg; of the ejected, at most "
              f"{max((float(r['crater_debris_mass_kg']) for r in rest), default=0.0):.2f} kg of crater debris in a shot, and wall debris "
              f"behind the tail in {len(walled)} shots"
