@@ -22,9 +22,9 @@
 # (workflow/rules/figures.smk).
 from pathlib import Path
 
-from penetration.config import check_config, check_config_files
-from penetration.pipeline import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task, uncommitted
-from penetration.scenes import scene_names
+from penetration.pipeline.config import check_config, check_config_files
+from penetration.pipeline.dispatch import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task, uncommitted
+from penetration.pipeline.scenes import scene_names
 from penetration.tasks.reference import checked_outputs
 
 configfile: "workflow/config.yaml"

@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from penetration.config import ConfigError, check_config
-from penetration.scenes import SceneError, read_scene, scene_data
+from penetration.pipeline.config import ConfigError, check_config
+from penetration.pipeline.scenes import SceneError, read_scene, scene_data
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE_SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
@@ -194,7 +194,7 @@ def test_predict_out_is_a_directory(tmp_path):
 
 
 def test_yaml_merge_keys_still_load_and_unhashable_keys_are_config_errors(tmp_path):
-    from penetration.config import load_with
+    from penetration.pipeline.config import load_with
     (tmp_path / "m.yaml").write_text("base: &x {a: 1}\nd: {<<: *x, c: 2}\n")
     assert load_with(tmp_path / "m.yaml", {})["d"] == {"a": 1, "c": 2}
     (tmp_path / "u.yaml").write_text("? [a, b]\n: 1\n")
@@ -245,7 +245,7 @@ def test_fe_scene_errors(tmp_path, changes, needle):
 
 
 def test_fe_scenes_of_the_pipeline_are_valid():
-    from penetration.pipeline import fe_scene_shots
+    from penetration.pipeline.dispatch import fe_scene_shots
     shots = fe_scene_shots(ROOT / "workflow/scenes/fe", SCENE_SCHEMA)
     assert set(shots) == {"do1", "do1_block", "table3", "fig15", "do1_depth54", "do1_depth54_free_bottom",
                           "do1_block_absorbing_sides", "table3_erosion_free", "table3_erosion_free_hole50",

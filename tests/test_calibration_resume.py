@@ -4,7 +4,7 @@ from types import SimpleNamespace
 
 import pytest
 
-import penetration.fe_level as fe_level
+import penetration.fe.level as fe_level
 from penetration.tasks.fe import TrialMemo
 
 

@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 import yaml
 
-from penetration.calibration import calibrate_strength, diameter_interval, fit_strength, infer_diameter
-from penetration.config import ConfigError
-from penetration.dop import penetration_depth
-from penetration.geometry import Ogive
-from penetration.resistance import Target
-from penetration.scenes import read_scene, resolve, velocities
+from penetration.analytic.fits import calibrate_strength, diameter_interval, fit_strength, infer_diameter
+from penetration.pipeline.config import ConfigError
+from penetration.analytic.dop import penetration_depth
+from penetration.nose.geometry import Ogive
+from penetration.analytic.resistance import Target
+from penetration.pipeline.scenes import read_scene, resolve, velocities
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
@@ -64,7 +64,7 @@ def test_resolve_and_velocity_range():
 
 
 def test_cavity_scene_effects_switch_hjc_terms():
-    from penetration.concrete import material_switches
+    from penetration.concrete.material import material_switches
     cfg = {"lock": "offset", "tension": "openradioss", "rate_floor": True}
     assert material_switches(("crater", "cavity", "strain_rate", "damage", "strength_cap"), {}, cfg) == {}
     assert material_switches(("nose_entry", "cavity"), {"lock": "literal"}, cfg) == {

@@ -2,13 +2,13 @@
 import numpy as np
 import pytest
 
-from penetration import cavity_verification as CV
-from penetration.cavity import Controls, Mesh, expand, stress_table
-from penetration.hjc import HJC
+from penetration.cavity import verification as CV
+from penetration.cavity.expansion import Controls, Mesh, expand, stress_table
+from penetration.concrete.hjc import HJC
 
 
 def _holds(checks):
-    """Every check (penetration.cavity_verification) within its accepted interval."""
+    """Every check (penetration.cavity.verification) within its accepted interval."""
     assert checks and all(c.holds for c in checks), [c for c in checks if not c.holds]
 
 

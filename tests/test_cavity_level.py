@@ -2,11 +2,11 @@
 import numpy as np
 import pytest
 
-from penetration.cavity_level import SigmaTable, cavity_trajectory
-from penetration.dop import penetration_depth
-from penetration.geometry import DoubleOgive, Ogive
-from penetration.nstar import nstar
-from penetration.resistance import Target
+from penetration.cavity.level import SigmaTable, cavity_trajectory
+from penetration.analytic.dop import penetration_depth
+from penetration.nose.geometry import DoubleOgive, Ogive
+from penetration.nose.nstar import nstar
+from penetration.analytic.resistance import Target
 
 TG = Target(2440.0, 48e6, 6.69)
 
@@ -52,9 +52,9 @@ def test_table_rejects_bad_velocities(v):
 def hjc_table():
     """sigma_n(v) of Table 1 HJC concrete at a strength scale near the calibrated one."""
     from pathlib import Path
-    from penetration.cavity_level import sigma_table
-    from penetration.reference import load_reference
-    from penetration.hjc import from_table1
+    from penetration.cavity.level import sigma_table
+    from penetration.paper.reference import load_reference
+    from penetration.concrete.hjc import from_table1
     refs = load_reference(Path(__file__).resolve().parents[1] / "workflow/reference/paper_values.csv")
     mat = from_table1(lambda q: refs[f"table1.{q}"].si, strength_scale=0.6)
     v = [50.0, 100.0, 200.0, 400.0, 800.0, 1200.0, 2000.0]
@@ -80,9 +80,9 @@ def test_hjc_level_finite_monotone_and_energy_closed_from_30_to_2500(hjc_table, 
 def test_calibration_recovers_the_parameter_that_made_the_depth(name, truth):
     """Round trip on a coarse table: the depth of a known parameter value gives that value back."""
     import dataclasses
-    from penetration.cavity import Mesh
-    from penetration.cavity_level import calibrate_parameter, sigma_table
-    from penetration.hjc import HJC
+    from penetration.cavity.expansion import Mesh
+    from penetration.cavity.level import calibrate_parameter, sigma_table
+    from penetration.concrete.hjc import HJC
     mesh, vel, nose = Mesh(zones=40), [100.0, 400.0, 900.0, 2000.0], Ogive(3, 0.07)
     table, _ = sigma_table(dataclasses.replace(HJC(), **{name: truth}), vel, 0.07, mesh)
     depth = cavity_trajectory(nose, 81.1, 835.0, table).depth
@@ -91,8 +91,8 @@ def test_calibration_recovers_the_parameter_that_made_the_depth(name, truth):
 
 
 def test_calibration_names_an_unknown_parameter():
-    from penetration.cavity_level import calibrate_parameter
-    from penetration.hjc import HJC
+    from penetration.cavity.level import calibrate_parameter
+    from penetration.concrete.hjc import HJC
     with pytest.raises(ValueError, match="not in"):
         calibrate_parameter(HJC(), "D1", Ogive(3, 0.07), 81.1, 835.0, 5.1, [100.0, 500.0], 0.07)
 

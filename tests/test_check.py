@@ -5,8 +5,7 @@ import subprocess
 import pandas as pd
 import pytest
 
-from penetration.tasks.reference import (cell_tolerances, checked_outputs, column_tolerances, compare, frames_differ,
-                                        reproduction_problems)
+from penetration.tasks.reference import (cell_tolerances, checked_outputs, column_tolerances, compare, frames_differ, reproduction_problems)
 
 HEAD = "item,quantity,case,paper,ours,rel_err,tol,status\n"
 CHECK = {"factor": 10.0,

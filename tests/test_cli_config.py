@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from penetration.config import ConfigError, load, validate
+from penetration.pipeline.config import ConfigError, load, validate
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow/schemas/config.schema.json"

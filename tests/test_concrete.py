@@ -1,4 +1,4 @@
-"""The target concrete (penetration.concrete): Table 1 as the reference table states it, the configured conventions,
+"""The target concrete (penetration.concrete.material): Table 1 as the reference table states it, the configured conventions,
 the scenes' material switches, the strength scaling and the calibration, built in one place for every level."""
 import ast
 import csv
@@ -12,11 +12,11 @@ from types import SimpleNamespace
 import pytest
 import yaml
 
-from penetration import concrete
+from penetration.concrete import material as concrete
 from penetration.errors import ParameterError
-from penetration.hjc import HJC
-from penetration.hjc_effects import MATERIAL_EFFECTS
-from penetration.reference import load_reference
+from penetration.concrete.hjc import HJC
+from penetration.concrete.effects import MATERIAL_EFFECTS
+from penetration.paper.reference import load_reference
 
 ROOT = Path(__file__).resolve().parents[1]
 PKG = ROOT / "src/penetration"
@@ -141,8 +141,8 @@ def test_table1_comes_back_exactly_at_48_mpa_and_the_calibration_sets_only_the_s
 def test_the_levels_build_the_pipelines_concrete():
     """The command line's cavity and fe levels, on Table 1's concrete, use the sets the pipeline's cavity and fe
     levels build from the same config section."""
-    from penetration.geometry import Ogive
-    from penetration.levels import Context, UserShot, cavity_material, fe_material
+    from penetration.nose.geometry import Ogive
+    from penetration.shots.ladder import Context, UserShot, cavity_material, fe_material
     base = configured()
     ctx = Context(base=base, strength_scale=0.6)
     shot = UserShot(Ogive(3.0, 0.07), 81.1, 800.0, base.fc, base.rho0)
@@ -198,17 +198,17 @@ def _imports(path):
 
 def test_concrete_sits_below_the_levels_and_reads_no_file():
     """It composes hjc (and the material effects' registry) with the error type and the units, nothing else."""
-    modules = {m.split(".")[0] for level, m, names in _imports(PKG / "concrete.py") if level}
-    outside = {m.split(".")[0] for level, m, _ in _imports(PKG / "concrete.py") if not level}
-    assert modules <= {"errors", "units", "hjc", "hjc_effects"}
+    modules = {(level, m) for level, m, names in _imports(PKG / "concrete/material.py") if level}
+    outside = {m.split(".")[0] for level, m, _ in _imports(PKG / "concrete/material.py") if not level}
+    assert modules <= {(2, "errors"), (2, "units"), (1, "hjc"), (1, "effects")}
     assert outside <= {"__future__", "dataclasses", "math"}
 
 
 def test_the_concrete_is_built_in_one_place():
-    """Table 1 is read, the switches decided and the strength scaled only in concrete.py (hjc.from_table1 is the
+    """Table 1 is read, the switches decided and the strength scaled only in concrete/material.py (hjc.from_table1 is the
     model's own constructor from a Table 1 look-up)."""
     for path in sorted(PKG.rglob("*.py")):
-        if path.name in ("concrete.py", "hjc.py"):
+        if path.relative_to(PKG).as_posix() in ("concrete/material.py", "concrete/hjc.py"):
             continue
         tree = ast.parse(path.read_text())
         defined = {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)}
@@ -225,5 +225,5 @@ def test_no_task_module_imports_a_sibling_for_the_concrete_or_the_do1_shot():
         for level, module, names in _imports(path):
             if level == 1 and module and module != "common":
                 assert not set(names) & physics, f"{path.name} imports {set(names) & physics} from tasks.{module}"
-    for name in ("fe", "levels"):  # the FE level and the users' levels take nothing from the cavity stage's tasks
+    for name in ("fe", "levels"):  # the FE level and the users' shots take nothing from the cavity stage's tasks
         assert not any(level == 1 and m == "cavity" for level, m, _ in _imports(PKG / f"tasks/{name}.py")), name

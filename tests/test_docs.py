@@ -1,11 +1,11 @@
-"""The numbers the README and docs/ quote are their outputs' (penetration.docs): every generated block equals what
+"""The numbers the README and docs/ quote are their outputs' (penetration.pipeline.docs): every generated block equals what
 the outputs committed at git HEAD give. This test checks the committed documents against the committed outputs."""
 from pathlib import Path
 
 import pytest
 
 from conftest import ROOT, committed, committed_files
-from penetration.docs import BLOCK, BLOCKS, next_mesh_cost, render
+from penetration.pipeline.docs import BLOCK, BLOCKS, next_mesh_cost, render
 
 DOCUMENTS = ["README.md"] + [p for p in committed_files("docs") if p.endswith(".md")]
 
@@ -13,7 +13,7 @@ DOCUMENTS = ["README.md"] + [p for p in committed_files("docs") if p.endswith(".
 @pytest.mark.parametrize("path", DOCUMENTS)
 def test_generated_blocks_equal_what_the_committed_outputs_give(path):
     text = committed(path)
-    assert render(text, committed) == text, f"python -m penetration.docs {path}"
+    assert render(text, committed) == text, f"python -m penetration.pipeline.docs {path}"
 
 
 def test_the_readme_quotes_its_results_through_generated_blocks():

@@ -170,8 +170,8 @@ def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
     leaves the model (eroded mass exactly 0, no element ERODED); what the guard ejected lies above the struck face
     and its mass is still on the nodes; the energy audit closes within 0.1 %."""
     from penetration.fe.shot import run_shot
-    from penetration.geometry import Ogive
-    from penetration.hjc import HJC
+    from penetration.nose.geometry import Ogive
+    from penetration.concrete.hjc import HJC
     nose = Ogive(3.0, 0.07)
     spec = RunSpec(nose, 81.1, 500.0, HJC(), Settings(element_size=0.07 / 4, window_ahead=0.8),
                    TargetSpec(formulation="erosion_free"), expected_depth=2.5)
@@ -214,7 +214,7 @@ def test_the_crater_wall_is_ejected_only_once_the_tip_is_past_crater_thin_after(
     """Model.rezone gates the crater's ejection on the projectile's tip: before crater_thin_after nothing below the
     face goes, after it the thinned crater wall does; a negative crater_thin_after is refused, naming the field."""
     from penetration.fe.model import Model
-    from penetration.hjc import HJC
+    from penetration.concrete.hjc import HJC
     with pytest.raises(ParameterError, match="crater_thin_after"):
         Controls(crater_thin_after=-1.0)
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
@@ -239,7 +239,7 @@ def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_
     such), and one deeper stops the run with its place named."""
     from penetration.fe.erosion import InsideTarget, retire
     from penetration.fe.model import Model
-    from penetration.hjc import HJC
+    from penetration.concrete.hjc import HJC
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
     m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
                                  crater_depth=0.08))
@@ -267,7 +267,7 @@ def test_the_guard_ejects_a_wall_element_behind_the_tail_as_wall_debris_and_stop
     any deep one when wall_debris_behind is None; a negative wall_debris_behind is refused, naming the field."""
     from penetration.fe.erosion import InsideTarget, retire
     from penetration.fe.model import Model
-    from penetration.hjc import HJC
+    from penetration.concrete.hjc import HJC
     with pytest.raises(ParameterError, match="wall_debris_behind"):
         Controls(wall_debris_behind=-0.1)
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
@@ -324,8 +324,8 @@ def test_the_1d_cavity_reference_meets_the_elastic_static_wall_stress(sphere, fa
     the elastic static one at the zone's mid-radius r (Lame): 4 G u a^2/r^3 for a spherical cavity and 2 G u a/r^2
     for a cylindrical one in plane strain, u = V t averaged over the second half of the run (the waves have long left
     the wall), within 1 %."""
-    from penetration.fe.cavity_reference import wall_stress
-    from penetration.hjc import HJC
+    from penetration.fe.verification.cavity_reference import wall_stress
+    from penetration.concrete.hjc import HJC
     material = HJC()
     V, a, t_end, r_out, zones = 0.002, 0.01, 2e-4, 1.5, 200
     ours = wall_stress(material, V, a, t_end, 0.5 * t_end, r_out=r_out, zones=zones, sphere=sphere)
@@ -340,7 +340,7 @@ def test_the_1d_cavity_reference_meets_the_elastic_static_wall_stress(sphere, fa
                                            (dict(across=6, hole=1.0), "hole"), (dict(across=6, v=0.0), "v ="),
                                            (dict(across=6, v=900.0), "v =")])
 def test_the_quasi_static_check_refuses_inputs_out_of_range(kwargs, field):
-    from penetration.fe.quasi_static import driven_force
+    from penetration.fe.verification.quasi_static import driven_force
 
     with pytest.raises(ValueError, match=field):
         driven_force(**kwargs)
@@ -353,8 +353,8 @@ def test_the_quasi_static_task_refines_each_hole_and_judges_the_limit_against_th
 
     import pandas as pd
 
-    import penetration.fe.quasi_static as Q
-    from penetration.io import load_json, write_json
+    import penetration.fe.verification.quasi_static as Q
+    from penetration.pipeline.io import load_json, write_json
     from penetration.tasks.fe_erosion_free import fe_quasi_static
 
     sigma = 500e6
@@ -416,7 +416,7 @@ def test_a_study_piece_keeps_every_shot_summary_and_refuses_a_partial_or_forced_
     written."""
     from types import SimpleNamespace
 
-    from penetration.io import load_json, write_json
+    from penetration.pipeline.io import load_json, write_json
     from penetration.tasks.fe_erosion_free import fe_erosion_free_piece
 
     shots = []

@@ -7,11 +7,12 @@ from types import SimpleNamespace
 import pytest
 import yaml
 
-from penetration import fe_level, reference
+from penetration.fe import level as fe_level
+from penetration.paper import reference
 from penetration.fe.shot import RunSpec
-from penetration.geometry import Ogive
-from penetration.pipeline import fe_calibrated_scenes
-from penetration.scenes import read_scene, resolve
+from penetration.nose.geometry import Ogive
+from penetration.pipeline.dispatch import fe_calibrated_scenes
+from penetration.pipeline.scenes import read_scene, resolve
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
@@ -35,7 +36,7 @@ def fake_depths(monkeypatch, calls):
 
 
 def test_the_strength_scale_secant_finds_a_known_scale_and_refuses_a_bracket_that_misses(monkeypatch):
-    from penetration import concrete
+    from penetration.concrete import material as concrete
     calls = []
     fake_depths(monkeypatch, calls)
     material = lambda k: concrete.configured(REFS, CONFIG["concrete"], strength_scale=k)
@@ -208,7 +209,7 @@ def test_the_do1_calibration_tasks_record_their_fit_and_resume_from_their_trials
     bound to; run again, every trial comes from the kept trials and no shot runs."""
     import math
 
-    from penetration.io import nose_record
+    from penetration.pipeline.io import nose_record
     from penetration.tasks import fe as fe_tasks
     calls = []
 

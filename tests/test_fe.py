@@ -7,9 +7,9 @@ import pytest
 from penetration.fe import Controls, Grid, MeshSpec, Model, Projectile, Unstable, body_outline, build, run
 from penetration.fe import state as fe_state
 from penetration.fe.nodes import node_pass
-from penetration.fe import setups
-from penetration.geometry import Flat, Ogive
-from penetration.hjc import HJC
+from penetration.fe.verification import setups
+from penetration.nose.geometry import Flat, Ogive
+from penetration.concrete.hjc import HJC
 
 
 # one element pass over every row, and the nodal force sums by the solver's own gather (the verification's helpers;
@@ -126,7 +126,7 @@ def test_hourglass_control_stays_active_in_fully_damaged_material():
 def test_failure_strain_calibration_finds_the_root_of_a_noisy_decreasing_depth(monkeypatch):
     """The bracketing secant in log fs stops within tol of the target despite a 0.3 % noise (a stand-in for the FE
     run: depth = 5.1 (1.02/fs)^0.8 (1 + noise)); a bracket that misses the target is refused."""
-    from penetration import fe_level
+    from penetration.fe import level as fe_level
     from penetration.fe.shot import RunSpec
     rng = np.random.default_rng(1)
 
@@ -242,7 +242,7 @@ def test_a_check_row_carries_its_deviation_and_verdict():
 def test_body_outline_does_not_follow_round_off_in_the_nose():
     """numpy's vector maths differ in the last bit between CPUs; the rigid body the erosion sees must not."""
     from types import SimpleNamespace
-    from penetration.geometry import MinimumNstar
+    from penetration.nose.geometry import MinimumNstar
     nose = MinimumNstar(0.07, Ogive(4.5, 0.07).length)
     x, y = nose.outline(400)
     jittered = SimpleNamespace(length=nose.length, radius=nose.radius,

@@ -11,10 +11,11 @@ import pytest
 
 FE = Path(__file__).resolve().parents[1] / "src" / "penetration" / "fe"
 PKG = FE.parent
-MODULES = sorted(FE.glob("*.py"))
+MODULES = sorted(FE.rglob("*.py"))
 # the independent references are written apart from the solver on purpose (they check it): their own
 # stable step or viscosity is not a second copy
 REFERENCES = {"chain_reference.py", "cavity_reference.py", "hjc_reference.py", "closed_forms.py", "gas.py"}
+HJC = PKG / "concrete" / "hjc.py"
 
 
 def _functions(path):
@@ -46,7 +47,7 @@ ONCE = {
     "erosion criterion": ("erosion.py", "erodes", r"eps_p >= value"),
     "node update": ("nodes.py", "new_velocity", r"dtv \* fr / m"),
     "force gather": ("nodes.py", "_corner", r"F\[k, e\]"),
-    "deviatoric predictor": ("../hjc.py", "deviatoric_trial", r"2\.0 \* G \* \(d0 - tr\)"),
+    "deviatoric predictor": ("../concrete/hjc.py", "deviatoric_trial", r"2\.0 \* G \* \(d0 - tr\)"),
     "wave speed": ("constitutive.py", "wave_speed", r"math\.sqrt\(modulus / rho\)"),
 }
 
@@ -54,10 +55,10 @@ ONCE = {
 @pytest.mark.parametrize("concept", sorted(ONCE))
 def test_each_formula_of_the_step_is_defined_once(concept):
     home, name, pattern = ONCE[concept]
-    homes = [p for p in MODULES + [PKG / "hjc.py"] if p.name not in REFERENCES
+    homes = [p for p in MODULES + [HJC] if p.name not in REFERENCES
              and any(f.name == name for f in _functions(p))]
     assert [p.name for p in homes] == [Path(home).name]
-    copies = [p.name for p in MODULES + [PKG / "hjc.py"] if p.name not in REFERENCES
+    copies = [p.name for p in MODULES + [HJC] if p.name not in REFERENCES
               for _ in re.finditer(pattern, p.read_text())]
     assert copies == [Path(home).name], f"{concept}: the formula occurs in {copies}"
 

@@ -1,4 +1,4 @@
-"""The FE level's result tables and studies (penetration.fe_studies) against hand-computed values and tabulated
+"""The FE level's result tables and studies (penetration.studies.fe_results) against hand-computed values and tabulated
 quantiles: intervals, goal flags at their edges, Table 3 ratios, band and ensemble means, the rear-face chain."""
 import math
 
@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 from scipy import stats
 
-from penetration import fe_studies as S
+from penetration.studies import fe_results as S
 
 # Student's t quantiles from a printed table (two-sided 95 %: 97.5 % quantile; 90 %: 95 %)
 T975 = {2: 4.302652729749464, 3: 3.182446305284263, 4: 2.776445105197799}

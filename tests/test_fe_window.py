@@ -6,8 +6,8 @@ import pytest
 from scipy import stats
 
 from penetration.fe.shot import RunSpec, Settings, run_shot
-from penetration.geometry import Ogive
-from penetration.hjc import HJC
+from penetration.nose.geometry import Ogive
+from penetration.concrete.hjc import HJC
 from penetration.tasks.fe_window import window_summary
 
 

@@ -5,9 +5,8 @@ import numpy as np
 import pytest
 
 from penetration.errors import ParameterError
-from penetration.geometry import (Cone, DoubleOgive, Flat, MinimumNstar, Ogive, TabulatedNose,
-                                  make_nose)
-from penetration.nstar import nstar
+from penetration.nose.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive, TabulatedNose, make_nose
+from penetration.nose.nstar import nstar
 
 
 def test_ogive_length_and_volume():

@@ -4,8 +4,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from penetration import grid_study
-from penetration.mesh_convergence import MONOTONE
+from penetration.studies import grid as grid_study
+from penetration.studies.mesh_convergence import MONOTONE
 
 ACROSS = {"m1": 8.192, "m2": 10.24, "m3": 12.8, "m4": 16.0}
 HOLES = (0.5, 0.25, 0.125)
@@ -122,7 +122,7 @@ def test_a_stopped_shot_ends_its_sequences_there_and_meets_no_goal():
     """A shot that stopped (no depth) at the finest mesh: its depth and the contrasts it enters are refined on the
     three coarser meshes (status stopped, their order and limit), the other noses' as before; stopped at the
     second mesh, nothing is refined and the zero-hole value is not extrapolated."""
-    from penetration.grid_study import STOPPED
+    from penetration.studies.grid import STOPPED
     finest = max(ACROSS.values())
     data = shots()
     for s in data:

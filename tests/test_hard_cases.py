@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from penetration.errors import ParameterError
-from penetration.geometry import Cone, DoubleOgive, MinimumNstar, Ogive
-from penetration.nstar import cumulative_nstar, nstar
+from penetration.nose.geometry import Cone, DoubleOgive, MinimumNstar, Ogive
+from penetration.nose.nstar import cumulative_nstar, nstar
 
 
 def finite(nose):

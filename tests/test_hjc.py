@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from penetration.errors import ParameterError
-from penetration.hjc import HJC, PointState, drive, fracture_strain, loading_pressure, strength
+from penetration.concrete.hjc import HJC, PointState, drive, fracture_strain, loading_pressure, strength
 
 MAT = HJC()
 Q = MAT.as_array()
@@ -224,7 +224,7 @@ def test_quick_update_equals_the_full_point_update(tension):
     three EOS regions, loading and unloading, compression and tension, damaged, intact and fully damaged, slow and
     fast: wherever the shortcut claims validity it must give update_point's stress, pressure, mu_max and plastic
     strain increment, with the damage and mu_p unchanged."""
-    from penetration.hjc import permanent_strain, power_chords, quick_update, update_point
+    from penetration.concrete.hjc import permanent_strain, power_chords, quick_update, update_point
 
     mat = HJC(tension=tension)
     q = mat.as_array()
@@ -261,7 +261,7 @@ def test_quick_update_equals_the_full_point_update(tension):
 
 def test_power_chords_bound_the_power_from_below():
     """min over power_chords' lines <= x^N on [0, 32], exact at the breakpoints, within 2 % between them."""
-    from penetration.hjc import I_N, power_chords
+    from penetration.concrete.hjc import I_N, power_chords
 
     q = HJC().as_array()
     c = power_chords(q)
@@ -276,7 +276,7 @@ def test_power_chords_bound_the_power_from_below():
 def _branching_update(s, mu, mu_max, mu_p, D, eps_p, de, rate, q):
     """update_point written with a branch per region of the piecewise laws (Eqs 12-18), in plain Python: the
     oracle of the compiled update, which evaluates every region and selects (see test below)."""
-    from penetration import hjc as H
+    from penetration.concrete import hjc as H
 
     q, de = [float(v) for v in q], [float(v) for v in de]
 
@@ -358,7 +358,7 @@ def test_point_update_equals_a_branching_transcription_bit_for_bit(fields):
     """The compiled update_point (every region evaluated, one selected) against _branching_update on random states
     over the EOS regions, loading and unloading, tension and compression, flow and no flow, damage growth, rates
     below, at and above the reference, and non-finite inputs: the same bits (NaN where the oracle gives NaN)."""
-    from penetration.hjc import update_point
+    from penetration.concrete.hjc import update_point
 
     mat = HJC(**fields)
     q = mat.as_array()

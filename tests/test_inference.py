@@ -2,10 +2,9 @@
 import numpy as np
 import pytest
 
-from penetration.geometry import Ogive
-from penetration.inference import (K_CONVENTIONS, Fig4Rule, InferenceError, Table4Rule, banded_double_ogive,
-                                   infer_fig4, infer_table4, k_band)
-from penetration.nstar import nstar
+from penetration.nose.geometry import Ogive
+from penetration.nose.inference import (K_CONVENTIONS, Fig4Rule, InferenceError, Table4Rule, banded_double_ogive, infer_fig4, infer_table4, k_band)
+from penetration.nose.nstar import nstar
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +32,7 @@ def test_only_the_adopted_convention_fits_fig3b():
 def test_band_ends_are_threshold_crossings():
     nose = Ogive(3, 1.0)
     lo, hi, _, _ = k_band(nose, 0.027, "integrand_no_factor2")
-    from penetration.inference import plotted_k
+    from penetration.nose.inference import plotted_k
     k = plotted_k(nose, np.array([lo, hi]) * nose.length, "integrand_no_factor2")
     assert np.allclose(k, 0.027, atol=1e-12)
 
@@ -79,7 +78,7 @@ def test_banded_construction_rejects_unreachable_tip():
 
 def test_table4_nose_does_not_follow_round_off_in_the_solver(table4, monkeypatch):
     """A CPU's BLAS kernels move the least-squares root in its last bits: the chosen nose must not move."""
-    import penetration.inference as inference
+    import penetration.nose.inference as inference
     real = inference.least_squares
 
     def jittered(*args, **kwargs):
@@ -99,7 +98,7 @@ def test_table4_nose_does_not_follow_round_off_in_the_solver(table4, monkeypatch
 def test_fig4_nose_does_not_follow_round_off_in_its_band_or_minimiser(monkeypatch):
     """The band's crossings (roots) and the least-N* member (a flat minimum, found to ~1e-8) differ in their
     last digits between CPUs: the chosen nose must not."""
-    import penetration.inference as inference
+    import penetration.nose.inference as inference
     base = infer_fig4(Fig4Rule())["nose"]
     band, golden = inference.k_band, inference._golden_min
     monkeypatch.setattr(inference, "k_band", lambda *a: (lambda lo, hi, x, k: (lo * (1 + 6e-16), hi * (1 - 6e-16), x, k))(*band(*a)))

@@ -5,7 +5,7 @@ import stat
 import pandas as pd
 import pytest
 
-from penetration.io import atomic, write_csv, write_text
+from penetration.pipeline.io import atomic, write_csv, write_text
 
 
 @pytest.mark.parametrize("umask", [0o022, 0o077])

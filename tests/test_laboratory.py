@@ -1,4 +1,4 @@
-"""Calibration on laboratory series: the protocol's folds and the fit of one factor (penetration.laboratory)."""
+"""Calibration on laboratory series: the protocol's folds and the fit of one factor (penetration.studies.laboratory)."""
 from __future__ import annotations
 
 import math
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from penetration.errors import ParameterError
-from penetration.laboratory import Protocol, errors_summary, fit_factor, interpolated_depths, slope
+from penetration.studies.laboratory import Protocol, errors_summary, fit_factor, interpolated_depths, slope
 
 SERIES = {"s1994": "1994", "s2003": "2003"}
 GROUPS = {"s2003": {"normal": (20.0, 50.0), "high": (80.0, 120.0)}}
@@ -92,7 +92,7 @@ def test_the_summary_and_the_slope_against_hand_values():
 def test_the_within_series_slope_ignores_an_offset_between_series_that_the_pooled_slope_takes_for_a_trend():
     """Two series with the same slope -0.2 in ln fc but offsets 0 and +0.5, the second at higher fc: the pooled slope
     is biased upward by the offset, the within-series one is exactly -0.2 (a zero-width interval: no scatter)."""
-    from penetration.laboratory import within_slope
+    from penetration.studies.laboratory import within_slope
     x = np.log([25.0, 35.0, 40.0, 60.0, 90.0, 110.0])
     groups = np.array(["a", "a", "a", "b", "b", "b"])
     y = -0.2 * x + np.where(groups == "b", 0.5, 0.0)
@@ -109,7 +109,7 @@ def test_the_validation_summary_scores_each_calibration_on_its_held_out_shots_wi
     row scores only the shots its folds held out; one primary row per (level, calibration)."""
     import pandas as pd
 
-    from penetration.laboratory import ROWS, summary_rows, users_rows
+    from penetration.studies.laboratory import ROWS, summary_rows, users_rows
 
     fc = np.array([39.0, 39.0, 23.0, 32.0, 40.0, 95.0, 101.0, 36.0])
     d = np.array([0.0762] * 3 + [0.0269] * 5)
@@ -197,7 +197,7 @@ def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(t
 
     import pandas as pd
 
-    from penetration.tasks.levels import validated_accuracy
+    from penetration.shots.records import validated_accuracy
 
     root = Path(__file__).resolve().parents[1]
     (tmp_path / "workflow/data").mkdir(parents=True)
@@ -229,7 +229,7 @@ def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(t
 def test_the_strength_scale_says_which_record_it_comes_from():
     """The source of the cavity level's strength scale is read from the record itself: a laboratory table (a fold
     column) or a DO1 record, whichever way the record was named."""
-    from penetration.tasks.levels import CAVITY_CALIBRATION, CAVITY_LABORATORY, context_from_pipeline
+    from penetration.shots.records import CAVITY_CALIBRATION, CAVITY_LABORATORY, context_from_pipeline
 
     root = Path(__file__).resolve().parents[1]
     assert context_from_pipeline(root).strength_scale_source.startswith("fitted on the laboratory shots")
@@ -246,7 +246,7 @@ def test_the_fe_level_takes_the_laboratory_failure_strain_of_its_mesh_where_one_
 
     import pandas as pd
 
-    from penetration.tasks.levels import FE_CALIBRATION, FE_LABORATORY, context_from_pipeline
+    from penetration.shots.records import FE_CALIBRATION, FE_LABORATORY, context_from_pipeline
 
     root = Path(__file__).resolve().parents[1]
     for rel in ("workflow/config.yaml", "workflow/reference/paper_values.csv", FE_CALIBRATION.format(profile="full")):

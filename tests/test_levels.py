@@ -11,12 +11,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from penetration import concrete, levels as L
-from penetration.cavity import Controls as CavityControls, Mesh as CavityMesh
+from penetration.concrete import material as concrete
+from penetration.shots import ladder as L
+from penetration.cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from penetration.errors import ParameterError
-from penetration.geometry import Ogive
-from penetration.hjc import HJC
-from penetration.tasks.levels import context_from_files, context_from_pipeline
+from penetration.nose.geometry import Ogive
+from penetration.concrete.hjc import HJC
+from penetration.shots.records import context_from_files, context_from_pipeline
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,11 +1,11 @@
-"""The limit at zero element size (penetration.mesh_convergence) against exact lines and its own coverage."""
+"""The limit at zero element size (penetration.studies.mesh_convergence) against exact lines and its own coverage."""
 import numpy as np
 import pandas as pd
 import pytest
 
-from penetration import mesh_convergence as mc
-from penetration.mesh_convergence import size_regression
-from penetration.fe_studies import extrapolation_rows
+from penetration.studies import mesh_convergence as mc
+from penetration.studies.mesh_convergence import size_regression
+from penetration.studies.fe_results import extrapolation_rows
 
 
 def test_an_exact_line_is_extrapolated_exactly_with_no_interval():
@@ -51,8 +51,7 @@ def test_rows_flag_a_single_mesh_series_that_is_not_monotone():
 
 
 # ------------------------------------------------------------------ grid refinement (Roache's GCI)
-from penetration.mesh_convergence import (CONVERGED, MONOTONE, NOT_ASYMPTOTIC, OSCILLATORY,  # noqa: E402
-                                          grid_refinement)
+from penetration.studies.mesh_convergence import CONVERGED, MONOTONE, NOT_ASYMPTOTIC, OSCILLATORY, grid_refinement
 
 
 @pytest.mark.parametrize("p, r", [(1.0, 1.25), (2.0, 1.25), (1.5, 2.0)])

@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from penetration.geometry import NOSES, Cone, DoubleOgive, Flat, MinimumNstar, Ogive
-from penetration.nstar import cumulative_nstar, nstar, nstar_parts, shape_rate
+from penetration.nose.geometry import NOSES, Cone, DoubleOgive, Flat, MinimumNstar, Ogive
+from penetration.nose.nstar import cumulative_nstar, nstar, nstar_parts, shape_rate
 
 RTOL = 1e-10
 

@@ -47,7 +47,7 @@ def test_invalid_config_stops_before_jobs():
 def test_a_committed_piece_is_not_an_input_and_a_missing_one_is(tmp_path, monkeypatch):
     """uncommitted: a rule's input function that leaves out the pieces on disk (records read through the params)
     and names the missing ones, with the rule's wildcards filled in."""
-    from penetration.pipeline import uncommitted
+    from penetration.pipeline.dispatch import uncommitted
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "full").mkdir()

@@ -14,9 +14,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from penetration import levels as L
-from penetration.geometry import Cone, MinimumNstar, Ogive
-from penetration.io import TargetError, write_csv
+from penetration.shots import ladder as L
+from penetration.nose.geometry import Cone, MinimumNstar, Ogive
+from penetration.pipeline.io import TargetError, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
 SHOTS = ROOT / "workflow/data/experiments-dev.csv"
@@ -144,7 +144,7 @@ def test_psi_and_crh_together_are_refused():
 
 
 def test_help_lists_the_one_table_of_shot_fields():
-    from penetration.shots import SHOT_FIELDS
+    from penetration.shots.fields import SHOT_FIELDS
     for command in ("dop", "simulate", "predict"):
         out = cli(command, "--help")
         assert out.returncode == 0
@@ -155,7 +155,7 @@ def test_help_lists_the_one_table_of_shot_fields():
 
 
 def test_user_shot_ranges_are_the_csv_ranges():
-    from penetration.shots import SHOT_FIELDS
+    from penetration.shots.fields import SHOT_FIELDS
     for attr, (lo, hi) in L.SHOT_RANGES.items():
         f = next(f for f in SHOT_FIELDS.values() if f.attribute == attr)
         assert (lo, hi) == (f.lo * f.si, f.hi * f.si)
@@ -234,7 +234,7 @@ def test_a_byte_order_mark_is_read_by_nstar_table_and_predict(tmp_path):
 def test_a_config_override_number_float_would_take_is_refused(monkeypatch, value):
     import yaml
     monkeypatch.chdir(ROOT)
-    from penetration.config import ConfigError, check_config
+    from penetration.pipeline.config import ConfigError, check_config
     cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
     cfg["trajectory"] = {"rtol": value}
     with pytest.raises(ConfigError, match="trajectory.rtol"):
@@ -256,7 +256,7 @@ def config(**changes):
 
 
 def refused_config(cfg):
-    from penetration.config import ConfigError, check_config
+    from penetration.pipeline.config import ConfigError, check_config
     with pytest.raises(ConfigError) as err:
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
     return str(err.value)
@@ -277,7 +277,7 @@ def test_the_shipped_config_is_finite_and_its_unfiltered_row_rule_still_picks_th
     """fig14_cutoff.csv's unfiltered rows (cutoff_hz written inf) take the fe_spike class: `where` names them by
     the text "inf" now, which the check reads as the number the committed column holds."""
     import numpy as np
-    from penetration.config import non_finite, read_yaml
+    from penetration.pipeline.config import non_finite, read_yaml
     from penetration.tasks.reference import cell_tolerances
     cfg = read_yaml(ROOT / "workflow/config.yaml")
     assert non_finite(cfg) == []
@@ -321,10 +321,10 @@ def test_sizes_beyond_the_machine_are_refused_with_their_bound(monkeypatch):
 def test_fe_mesh_estimate_counts_the_meshes_the_level_builds():
     """The config's element count is that of fe.mesh.build for the same mesh (within the columns the kernels'
     vector width adds)."""
-    from penetration.config import fe_mesh_elements, read_yaml
+    from penetration.pipeline.config import fe_mesh_elements, read_yaml
     from penetration.fe.mesh import build
     from penetration.fe.shot import Settings, TargetSpec, mesh_spec
-    from penetration.geometry import Ogive
+    from penetration.nose.geometry import Ogive
     fe = read_yaml(ROOT / "workflow/config.yaml")["fe"]
     for h in (0.0233333333333, 0.00875, 0.003):
         spec = mesh_spec(Ogive(3.0, 0.07), Settings.from_config(fe, None, h), TargetSpec(radius=fe["target_radius"]), 5.1)
@@ -345,8 +345,8 @@ def test_a_key_given_twice_in_a_configfile_stops_snakemake(tmp_path):
 def test_a_scene_name_outside_the_scene_wildcard_is_refused(tmp_path, name, suggested):
     """An FE scene folder is listed when the Snakefile is read: a file the wildcard [A-Za-z0-9_]+ cannot name is
     refused there with a name that would do, not met by Snakemake's 'no rule to produce'."""
-    from penetration.pipeline import fe_scene_shots
-    from penetration.scenes import SceneError, read_scene, scene_names
+    from penetration.pipeline.dispatch import fe_scene_shots
+    from penetration.pipeline.scenes import SceneError, read_scene, scene_names
     folder = tmp_path / "fe"
     folder.mkdir()
     (folder / f"{name}.yaml").write_text((ROOT / "workflow/scenes/fe/do1.yaml").read_text())
@@ -360,7 +360,7 @@ def test_a_scene_name_outside_the_scene_wildcard_is_refused(tmp_path, name, sugg
 
 
 def test_the_shipped_scene_folders_have_wildcard_names():
-    from penetration.scenes import scene_names
+    from penetration.pipeline.scenes import scene_names
     for folder in ("workflow/scenes", "workflow/scenes/cavity", "workflow/scenes/fe"):
         assert scene_names(ROOT / folder)
 

@@ -6,8 +6,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from penetration.errors import ParameterError
-from penetration.geometry import DoubleOgive, MinimumNstar, Ogive
-from penetration.nstar import cumulative_nstar, nstar
+from penetration.nose.geometry import DoubleOgive, MinimumNstar, Ogive
+from penetration.nose.nstar import cumulative_nstar, nstar
 
 psi = st.floats(0.5, 200.0)
 scale = st.floats(1e-3, 1e3)

@@ -3,8 +3,8 @@ from pathlib import Path
 
 import pytest
 
-from penetration.diff import COLUMNS, STATUSES, arithmetic_check, holds, table1_rows, table3_rows
-from penetration.reference import Ref, load_reference
+from penetration.paper.diff import COLUMNS, STATUSES, arithmetic_check, holds, table1_rows, table3_rows
+from penetration.paper.reference import Ref, load_reference
 
 ROOT = Path(__file__).resolve().parents[1]
 REF = ROOT / "workflow/reference/paper_values.csv"
@@ -64,7 +64,7 @@ def test_committed_diff_has_the_contract():
 
 def _shot_refs(depth_at_shot_ratio):
     """Table 3 double-ogive row on a straight line in v; the shot at ratio x the line's 835 m/s value."""
-    from penetration.diff import table3_sim_at_shot
+    from penetration.paper.diff import table3_sim_at_shot
     line = lambda v: 0.01 * v - 3.0
     R = {f"table3.sim.{v}.double_ogive": ref(line(v), "m") for v in (500, 800, 1000, 1200)}
     R["table2.velocity"] = ref(835.0, "m/s")
@@ -79,7 +79,7 @@ def test_table3_row_interpolated_at_the_shot():
 
 
 def test_paper_table3_row_sits_above_the_shot():
-    from penetration.diff import table3_sim_at_shot
+    from penetration.paper.diff import table3_sim_at_shot
     row = table3_sim_at_shot(load_reference(REF))
     # linear interpolation between 800 and 1000 m/s gives 5.307 m, a chord above the convex row
     assert 5.27 < row.ours < 5.307 and row.rel_err == pytest.approx(0.037, abs=0.005)
@@ -87,7 +87,7 @@ def test_paper_table3_row_sits_above_the_shot():
 
 def test_calibrated_agreement_has_its_own_status():
     """Agreement that a calibration produced is never counted as reproduction."""
-    from penetration.diff import compare
+    from penetration.paper.diff import compare
     r = ref(5.0)
     assert compare(r, 5.0).status == "reproduced"
     assert compare(r, 5.0, calibrated=True).status == "agrees-after-calibration"
@@ -97,7 +97,7 @@ def test_calibrated_agreement_has_its_own_status():
 def test_contrast_claims_use_the_least_gain_over_table3_velocities():
     """'+10 % over CRH 3 at the same velocity' is a lower bound: one velocity below it makes the level deviate,
     and a calibrated level that meets it agrees only after calibration."""
-    from penetration.diff import CONTRAST_LEVELS, contrast_rows
+    from penetration.paper.diff import CONTRAST_LEVELS, contrast_rows
     from penetration.tasks.contrasts import contrast_rows as gather
     refs = load_reference(REF)
     claim = refs["text.gain_pct_crh3"].quantity
@@ -125,12 +125,12 @@ def test_contrast_claims_use_the_least_gain_over_table3_velocities():
 def test_an_interval_is_judged_on_where_it_lies_against_the_paper_and_the_tolerance(low, high, status):
     """Paper 11.5 with a 2-point goal: inside the goal agrees, excluding the paper deviates, anything else is
     undecided (the interval holds the paper's value and values outside the goal)."""
-    from penetration.diff import interval_status
+    from penetration.paper.diff import interval_status
     assert interval_status(11.5, low, high, 2.0) == status
 
 
 def test_fe_limit_rows_compare_the_extrapolated_increment_with_the_paper():
-    from penetration.diff import fe_limit_rows
+    from penetration.paper.diff import fe_limit_rows
     refs = load_reference(REF)
     row = {"contrast": "DO/CRH 4.5", "velocity_ms": 800, "meshes": 21, "confidence": 0.95,
            "ratio_at_zero_size": 1.147, "interval_low": 1.097, "interval_high": 1.197}
@@ -148,9 +148,9 @@ def test_fe_limit_rows_compare_the_extrapolated_increment_with_the_paper():
 def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_band(ratio, band, status, ranking):
     """DO/CRH 4.5 at 800 m/s (the paper's simulation: +6.86 %): the converged ratio with its GCI band against the
     paper's increment (2 points, nothing calibrated: agreement is a reproduction) and against 1 (the ranking)."""
-    from penetration.diff import erosion_free_rows
+    from penetration.paper.diff import erosion_free_rows
     refs = load_reference(REF)
-    from penetration.grid_study import ranking as study_ranking
+    from penetration.studies.grid import ranking as study_ranking
     row = {"quantity": "depth_ratio", "case": "DO/CRH 4.5", "velocity_ms": 800.0, "at_zero_hole": ratio,
            "uncertainty": band, "mesh_status_all_asymptotic": True, "hole_status": "asymptotic",
            "ranking": study_ranking(ratio, band)}   # the study's verdict column (grid_study.hole_rows)
@@ -166,7 +166,7 @@ def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_b
 @pytest.mark.parametrize("asymptotic, stopped", [("True", "False"), ("False", "True")])
 def test_erosion_free_rows_read_the_csv_booleans_of_the_mesh_status(asymptotic, stopped):
     """The study's CSV holds its booleans as text: "False" must read as not asymptotic and no shot stopped."""
-    from penetration.diff import erosion_free_rows
+    from penetration.paper.diff import erosion_free_rows
     refs = load_reference(REF)
     row = {"quantity": "depth_ratio", "case": "DO/CRH 4.5", "velocity_ms": "800", "at_zero_hole": "1.05",
            "uncertainty": "0.01", "mesh_status_all_asymptotic": asymptotic, "meshes_stopped": stopped,
@@ -182,7 +182,7 @@ def test_erosion_free_depth_rows_judge_the_stated_depth_on_its_band_and_call_a_c
     """CRH 3 at 1200 m/s (the paper's simulation: 7.860 m, 7.5 %): the stated HJC's depth at zero size and hole with
     its band against the tolerance (reproduced only when the whole band lies within it); the DO1-calibrated depth of
     one mesh is compared by value and, within the tolerance, agrees after calibration, never reproduces."""
-    from penetration.diff import erosion_free_depth_rows
+    from penetration.paper.diff import erosion_free_depth_rows
     refs = load_reference(REF)
     ref = refs["table3.sim.1200.crh3"]
     limit = {"quantity": "depth_m", "case": "crh3", "velocity_ms": 1200.0, "at_zero_hole": depth, "uncertainty": band}
@@ -200,7 +200,7 @@ def test_erosion_free_rows_without_a_limit_give_the_spread_and_decide_nothing():
     """A zero-hole row with no limit (the study's refinement found none) and no least-squares interval at some hole:
     the diff gives the median and range of every mesh's and hole's value, never a verdict, for the increment, the
     ranking and the depth."""
-    from penetration.diff import erosion_free_depth_rows, erosion_free_rows
+    from penetration.paper.diff import erosion_free_depth_rows, erosion_free_rows
     refs = load_reference(REF)
     row = {"quantity": "depth_ratio", "case": "CRH 4.5/CRH 3", "velocity_ms": 1200.0, "at_zero_hole": 1.02,
            "uncertainty": float("inf"), "limit_found": "False", "values": 12, "values_min": 1.072,
@@ -229,7 +229,7 @@ def test_erosion_free_rows_without_a_limit_are_judged_on_the_holes_least_squares
     """No limit, but every hole has a least-squares interval: the increment is judged on their hull (the paper's
     CRH 4.5/CRH 3 at 1200 m/s, +5.9 %, outside the hull: deviates; inside: undecided) and the ranking on the
     study's ls_ranking (above 1 at every hole: reproduced, at the holes run); the depth likewise on its hull."""
-    from penetration.diff import erosion_free_depth_rows, erosion_free_rows
+    from penetration.paper.diff import erosion_free_depth_rows, erosion_free_rows
     refs = load_reference(REF)
     row = {"quantity": "depth_ratio", "case": "CRH 4.5/CRH 3", "velocity_ms": 1200.0, "at_zero_hole": 1.02,
            "uncertainty": float("inf"), "limit_found": "False", "values": 12, "values_min": 1.072,

@@ -36,7 +36,7 @@ def task_modules():
 
 def registered_tasks():
     """Rule name -> dotted module of the function marked with @task."""
-    from penetration.io import TASKS
+    from penetration.pipeline.io import TASKS
     for m in task_modules():
         importlib.import_module(m)
     return {name: fn.__module__ for name, fn in TASKS.items()}
@@ -152,8 +152,9 @@ def rerun(tree, module):
     return direct, every - {"all"}
 
 
-@pytest.mark.parametrize("module", ["units.py", "hjc.py", "hjc_effects.py", "io.py", "config.py", "reference.py",
-                                    "geometry.py", "trajectory.py", "tasks/common.py", "figures/common.py",
+@pytest.mark.parametrize("module", ["units.py", "concrete/hjc.py", "concrete/effects.py", "pipeline/io.py",
+                                    "pipeline/config.py", "paper/reference.py", "nose/geometry.py",
+                                    "analytic/trajectory.py", "tasks/common.py", "figures/common.py",
                                     "figures/fig04.py"])
 @pytest.mark.slow
 def test_editing_a_module_reruns_exactly_its_users(tree, closures, module):
@@ -189,7 +190,7 @@ def test_a_rule_whose_task_resolves_its_scene_declares_the_inferred_noses():
 
     from workflow_rules import loaded_rules
 
-    from penetration.io import TASKS
+    from penetration.pipeline.io import TASKS
     registered_tasks()
     reads_file_only = {"fe_table3"}
     for name, r in loaded_rules().items():

@@ -5,10 +5,10 @@ from pathlib import Path
 
 import pytest
 
-from penetration.config import read_yaml
+from penetration.pipeline.config import read_yaml
 from penetration.errors import ParameterError
 from penetration.fe.spec import Controls, RunSpec, Settings, TargetSpec
-from penetration.scenes import SceneError, merge_patch, read_scene, scene_data, scene_files
+from penetration.pipeline.scenes import SceneError, merge_patch, read_scene, scene_data, scene_files
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow/schemas/scene.schema.json"
@@ -111,7 +111,7 @@ def test_a_broken_extends_is_refused_naming_the_file(tmp_path):
 
 def test_rules_take_the_files_a_scene_extends_as_inputs(monkeypatch):
     """A change to the paper's case reruns every level's scene of it."""
-    from penetration.pipeline import scene_input
+    from penetration.pipeline.dispatch import scene_input
     monkeypatch.chdir(ROOT)
     got = scene_input("workflow/scenes/fe/table3.yaml")
     assert got["scene"] == "workflow/scenes/fe/table3.yaml" and got["scene_bases"] == ["workflow/scenes/table3.yaml"]
@@ -125,7 +125,7 @@ def test_rules_take_the_files_a_scene_extends_as_inputs(monkeypatch):
 
 def test_tasks_and_figures_read_scenes_and_configs_through_their_loaders():
     """A scene read as plain YAML misses the case it extends (a KeyError on its noses); every task and figure module
-    reads scenes through penetration.scenes and configs through penetration.config, never yaml itself."""
+    reads scenes through penetration.pipeline.scenes and configs through penetration.pipeline.config, never yaml itself."""
     import ast
     pkg = ROOT / "src/penetration"
     readers = []

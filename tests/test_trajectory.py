@@ -4,13 +4,12 @@ import math
 import numpy as np
 import pytest
 
-from penetration.dop import penetration_depth
+from penetration.analytic.dop import penetration_depth
 from penetration.errors import ParameterError
-from penetration.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive
-from penetration.nstar import nstar
-from penetration.resistance import Target, double_ogive_force_eq11, forrestal_stress, nose_force, nose_surface, \
-    tunnel_force
-from penetration.trajectory import assemble, integrate
+from penetration.nose.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive
+from penetration.nose.nstar import nstar
+from penetration.analytic.resistance import (Target, double_ogive_force_eq11, forrestal_stress, nose_force, nose_surface, tunnel_force)
+from penetration.analytic.trajectory import assemble, integrate
 
 TG = Target(2440.0, 48e6, 6.69)
 FORRESTAL = ("crater", "static", "inertial")
@@ -97,9 +96,9 @@ def test_scene_schema_effects_are_the_registries():
     """Every effect a scene may name is a registered trajectory or material effect, and the reverse."""
     import json
     from pathlib import Path
-    from penetration.hjc_effects import MATERIAL_EFFECTS
-    from penetration.scenes import FE_EFFECTS
-    from penetration.trajectory import EFFECTS
+    from penetration.concrete.effects import MATERIAL_EFFECTS
+    from penetration.pipeline.scenes import FE_EFFECTS
+    from penetration.analytic.trajectory import EFFECTS
     schema = json.loads((Path(__file__).resolve().parents[1] / "workflow/schemas/scene.schema.json").read_text())
     named = set(schema["properties"]["effects"]["items"]["enum"])
     assert named == set(EFFECTS) | set(MATERIAL_EFFECTS) | set(FE_EFFECTS)
@@ -144,7 +143,7 @@ def test_friction_adds_the_axial_share():
 @pytest.mark.parametrize("fc", [10e6, 200e6])
 @pytest.mark.parametrize("nose", [Ogive(0.5, 0.07), Flat(0.07), MinimumNstar(0.07, 0.29)], ids=lambda n: n.kind)
 def test_trajectory_monotone_in_velocity_for_hard_noses_and_strengths(fc, nose):
-    from penetration.resistance import strength_factor
+    from penetration.analytic.resistance import strength_factor
     tg = Target(2400.0, fc, float(strength_factor(fc)))
     n = nstar(nose)
     depths = []
@@ -163,8 +162,8 @@ def test_crater_coefficient_of_eq7_and_of_a_general_law(fraction):
     V1^2 = vs^2 - 16 a^2 c / m, and agree above the critical velocity. Below it the closed form continues to
     V1^2 < 0 (Li & Chen's shallow branch) while the general law takes c = F(0)/4a: larger by at most the factor
     1 + 4 pi a^3 N* rho / m (reached at vs = 0)."""
-    from penetration.resistance import crater_coefficient
-    from penetration.trajectory import cavity_crater_coefficient
+    from penetration.analytic.resistance import crater_coefficient
+    from penetration.analytic.trajectory import cavity_crater_coefficient
     m, a, nose = 81.1, 0.07, Ogive(3, 0.07)
     n = nstar(nose)
     vs = fraction * math.sqrt(4 * math.pi * a**3 * TG.R / m)

@@ -1,11 +1,11 @@
-"""Each answer's validated accuracy and the range it holds for (penetration.trust), against hand values."""
+"""Each answer's validated accuracy and the range it holds for (penetration.shots.trust), against hand values."""
 import csv
 
 import pytest
 
-from penetration.geometry import Ogive, make_nose
-from penetration.levels import UserShot
-from penetration.trust import ValidatedRange, accuracy_line, warnings
+from penetration.nose.geometry import Ogive, make_nose
+from penetration.shots.ladder import UserShot
+from penetration.shots.trust import ValidatedRange, accuracy_line, warnings
 
 ROWS = [{"diameter_m": "0.0269", "mass_kg": "0.9", "fc_MPa": "23", "target_density_kgm3": "2300",
          "velocity_ms": "139.3", "nose_shape": "ogive", "crh": "2"},

@@ -580,7 +580,7 @@ figure(study("cavity_table3_sensitivity.png"))
 #
 # Each problem against a closed form, a published solution or an independent oracle solution, with the interval
 # accepted around the reference (`figures/cavity_verification.csv`, `figures/fe_verification.csv`; written by
-# `penetration.cavity_verification` and `penetration.fe.verification`, whose problems the tests run).
+# `penetration.cavity.verification` and `penetration.fe.verification`, whose problems the tests run).
 
 # %%
 for name in ("cavity_verification.csv", "fe_verification.csv"):

@@ -6,7 +6,7 @@ hjc -> cavity) -> reference -> figures. Physics modules do no file I/O; the
 """
 __version__ = "0.1.0"
 
-from . import numba_cache as _numba_cache  # noqa: E402
+from .pipeline import numba_cache as _numba_cache  # noqa: E402
 
 _numba_cache.configure_llvm()
 _numba_cache.check()  # before any module with compiled kernels is imported

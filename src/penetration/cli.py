@@ -16,10 +16,10 @@ import textwrap
 import time
 from pathlib import Path
 
-from .config import ConfigError
+from .pipeline.config import ConfigError
 from .errors import ParameterError
-from .geometry import NOSES, make_nose
-from .nstar import nstar
+from .nose.geometry import NOSES, make_nose
+from .nose.nstar import nstar
 from .units import NUMBER_FORM, parse_number
 
 KEYS_HELP = {
@@ -101,7 +101,7 @@ def _wrap(text, indent=0):
 
 def _shot_keys_help():
     """The shot keys of dop and simulate, from the one table of shot fields (shots.SHOT_FIELDS)."""
-    from .shots import SHOT_FIELDS
+    from .shots.fields import SHOT_FIELDS
     lines = []
     for name, f in SHOT_FIELDS.items():
         need = (f"default {f.default:g}" if f.default is not None else "required" if f.required and name != "diameter_m"
@@ -136,7 +136,7 @@ def _parser():
     _shot_parser(sub, "dop", "depth of penetration, time to rest, peak deceleration and cost of one shot")
     s = _shot_parser(sub, "simulate", "one shot as dop, and its history (time, depth, velocity, deceleration) as CSV")
     s.add_argument("--out", required=True, help="history CSV to write (levels trajectory, cavity, fe)")
-    from .shots import columns_help
+    from .shots.fields import columns_help
     pr = sub.add_parser("predict", help="depth of penetration of a CSV of shots at any level",
                         formatter_class=argparse.RawDescriptionHelpFormatter,
                         epilog=_wrap("shots CSV: a header row naming the columns (each once), one shot a row; numbers "
@@ -166,8 +166,8 @@ def _keywords(pairs):
 
 def _predict(args) -> int:
     """Predict the shots of a CSV file; nothing is written unless at least one row could be predicted."""
-    from .io import TargetError, check_target, read_rows, write_rows
-    from .levels import output_fields, predict_rows
+    from .pipeline.io import TargetError, check_target, read_rows, write_rows
+    from .shots.ladder import output_fields, predict_rows
     src, out = Path(args.shots), Path(args.out)
     try:
         check_target(out)
@@ -260,7 +260,7 @@ def _partial(out, record):
     """Write the partial record of an interrupted run beside --out (OUT.partial.json); returns its path or None."""
     if out is None:
         return None
-    from .io import write_json
+    from .pipeline.io import write_json
     path = Path(f"{out}.partial.json")
     try:
         write_json(record, path)
@@ -274,13 +274,13 @@ UNKNOWN_ACCURACY = "validated accuracy unknown (no committed validation under --
 
 def _validation(args):
     """(the development shots' range, level -> errors) from the committed validation under --root, or None."""
-    from .tasks.levels import validated_accuracy
+    from .shots.records import validated_accuracy
     return validated_accuracy(args.root, args.profile, getattr(args, "calibration", "laboratory"))
 
 
 def _trust(args, shot, level):
     """The validated accuracy line of ``level`` and the warnings for ``shot`` (from the committed validation)."""
-    from .trust import accuracy_line, warnings
+    from .shots.trust import accuracy_line, warnings
     found = _validation(args)
     if found is None:
         return UNKNOWN_ACCURACY, []
@@ -291,8 +291,8 @@ def _trust(args, shot, level):
 
 def _predict_trust(args, good):
     """The level's validated accuracy, and a warning for each predicted row outside the validated range (stderr)."""
-    from .levels import user_shot
-    from .trust import accuracy_line, warnings
+    from .shots.ladder import user_shot
+    from .shots.trust import accuracy_line, warnings
     found = _validation(args)
     if found is None:
         print(UNKNOWN_ACCURACY, file=sys.stderr)
@@ -311,8 +311,8 @@ def _predict_trust(args, good):
 
 def _context(args):
     """The levels' context from --root, with the command line's calibration overrides (checked)."""
-    from .config import available_memory
-    from .tasks.levels import context_from_pipeline
+    from .pipeline.config import available_memory
+    from .shots.records import context_from_pipeline
     root = Path(args.root)
     if not (root / "workflow/config.yaml").is_file():
         raise ParameterError("argument", "--root", args.root, "a pipeline directory with workflow/config.yaml")
@@ -334,20 +334,20 @@ def _context(args):
 def _shot(args):
     """The UserShot of dop/simulate's keys: the shot fields of the shots CSV (converted to SI by
     levels.shot_from_keywords) and the nose's keys."""
-    from .levels import shot_from_keywords
+    from .shots.ladder import shot_from_keywords
     return shot_from_keywords(args.kind, _keywords(args.params))
 
 
 def _one_shot(args) -> int:
-    from .io import TargetError, check_target
-    from .levels import run
+    from .pipeline.io import TargetError, check_target
+    from .shots.ladder import run
     if args.command == "simulate" and args.model == "analytic":
         return _fail("--model analytic has no history; allowed for simulate: trajectory, cavity, fe")
     try:
         shot = _shot(args)
         ctx = _context(args) if args.model != "analytic" else None
         if ctx is None:
-            from .levels import Context
+            from .shots.ladder import Context
             ctx = Context(strength_law=args.strength_law)
         out = Path(args.out) if args.command == "simulate" else None
         if out is not None:
@@ -373,7 +373,7 @@ def _one_shot(args) -> int:
     rec["validated_accuracy"], rec["warnings"] = _trust(args, shot, args.model)
     if out is not None:
         import pandas as pd
-        from .io import write_csv
+        from .pipeline.io import write_csv
         cols = {"t": "t_s", "depth": "depth_m", "velocity": "velocity_m_s", "deceleration": "deceleration_m_s2"}
         try:
             write_csv(pd.DataFrame({cols[k]: v for k, v in res.history.items()}), out)

@@ -16,8 +16,8 @@ def main() -> int:
     print("compiling the cavity and finite-element kernels (once per install; about a minute on 2 cores)...",
           file=sys.stderr, flush=True)
     from .fe.shot import Settings
-    from .geometry import Ogive
-    from .levels import Context, UserShot, run
+    from .nose.geometry import Ogive
+    from .shots.ladder import Context, UserShot, run
     ctx = Context(strength_scale=1.0, strength_scale_source="warm-up", failure_strain=1.0,
                   failure_strain_source="warm-up", fe_settings=Settings(element_size=0.07 / 3),
                   cavity_velocities=(100.0, 200.0, 400.0), cavity_rtol=1e-6)

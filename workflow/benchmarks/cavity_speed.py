@@ -13,11 +13,11 @@ from nstar_speed import machine, timed
 import statistics
 import time
 
-from penetration.cavity import Controls, Mesh, expand, stress_table
-from penetration.cavity_level import cavity_trajectory, sigma_table
-from penetration.config import read_yaml
-from penetration.geometry import DoubleOgive, Ogive
-from penetration.hjc import HJC
+from penetration.cavity.expansion import Controls, Mesh, expand, stress_table
+from penetration.cavity.level import cavity_trajectory, sigma_table
+from penetration.pipeline.config import read_yaml
+from penetration.nose.geometry import DoubleOgive, Ogive
+from penetration.concrete.hjc import HJC
 
 
 def main():

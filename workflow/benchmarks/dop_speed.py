@@ -9,11 +9,11 @@ import time
 
 import numpy as np
 
-from penetration.dop import penetration_depth
-from penetration.geometry import DoubleOgive
-from penetration.nstar import nstar
-from penetration.resistance import Target
-from penetration.trajectory import assemble, integrate
+from penetration.analytic.dop import penetration_depth
+from penetration.nose.geometry import DoubleOgive
+from penetration.nose.nstar import nstar
+from penetration.analytic.resistance import Target
+from penetration.analytic.trajectory import assemble, integrate
 
 from nstar_speed import machine, timed
 

@@ -16,12 +16,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "src"))
 
-from penetration import levels as L  # noqa: E402
-from penetration.config import cpu_model  # noqa: E402
+from penetration.shots import ladder as L  # noqa: E402
+from penetration.pipeline.config import cpu_model  # noqa: E402
 from penetration.fe.shot import run_shot  # noqa: E402
-from penetration.fe_level import estimate_cost  # noqa: E402
-from penetration.geometry import Ogive  # noqa: E402
-from penetration.tasks.levels import context_from_pipeline  # noqa: E402
+from penetration.fe.level import estimate_cost  # noqa: E402
+from penetration.nose.geometry import Ogive  # noqa: E402
+from penetration.shots.records import context_from_pipeline  # noqa: E402
 
 SHOTS = {
     "README example (0.9 kg, 26.9 mm CRH 3, 800 m/s, 35 MPa)": L.UserShot(Ogive(3.0, 0.01345), 0.9, 800.0, 35e6, 2300.0, 0.2424),

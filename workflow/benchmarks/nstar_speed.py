@@ -11,8 +11,8 @@ import time
 
 import numpy as np
 
-from penetration.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive, TabulatedNose
-from penetration.nstar import nstar
+from penetration.nose.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive, TabulatedNose
+from penetration.nose.nstar import nstar
 
 
 def machine():

@@ -6,7 +6,7 @@ Snakemake was killed (pipeline.end_with_parent): an orphaned job never writes it
 import contextlib
 import sys
 
-from penetration.pipeline import end_with_parent, run
+from penetration.pipeline.dispatch import end_with_parent, run
 
 end_with_parent()
 

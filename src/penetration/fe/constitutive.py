@@ -1,7 +1,7 @@
 """How a material behaves in the FE level: its parameters, stress update, wave speed and impedance, by kind.
 
 Every material is a frozen dataclass; ``KINDS`` gives each class its kind code and the compiled kernels dispatch
-on that code (``update``, ``longitudinal_modulus``). HJC is ``penetration.hjc.HJC`` itself: its point update
+on that code (``update``, ``longitudinal_modulus``). HJC is ``penetration.concrete.hjc.HJC`` itself: its point update
 (``hjc.update_voigt``, which ``hjc.update_point`` wraps for arrays, and its branch-free shortcut
 ``hjc.quick_update``) is the one the element pass calls, the same code as the HJC drivers and tests use.
 
@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import ParameterError
-from ..hjc import HJC, deviatoric_trial, longitudinal_modulus as hjc_modulus, update_voigt
+from ..concrete.hjc import HJC, deviatoric_trial, longitudinal_modulus as hjc_modulus, update_voigt
 from .state import DMG, EPSP, MUMAX, MUP, P, SRR, SRZ, STT, SZZ, Material
 
 ELASTIC, VON_MISES, HJC_KIND = 0, 1, 2

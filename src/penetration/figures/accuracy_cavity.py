@@ -9,7 +9,7 @@ from __future__ import annotations
 import pandas as pd
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 from .common import figure, save
 
 PANELS = {"zones": "cavity solver: zones", "cfl": "cavity solver: CFL number",

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 from .common import figure, save
 
 NOSE_LABELS = {"double_ogive": "DO", "crh45": "CRH 4.5", "crh3": "CRH 3"}

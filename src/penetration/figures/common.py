@@ -7,7 +7,7 @@ import pandas as pd
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from ..io import atomic  # noqa: E402
+from ..pipeline.io import atomic  # noqa: E402
 
 PAPER_STYLE = dict(color="black", linestyle="none", marker="x", markersize=8, mew=1.6)
 NOSE_COLORS = {"crh3": "tab:red", "crh5": "tab:blue", "crh45": "tab:blue", "double_ogive": "tab:green",

@@ -1,7 +1,7 @@
 """Drawings of the finite-element level: Figs 12-15, the DO1 fields, and the drawings of its tables and studies.
 
 The figure tasks here read the per-shot results of ``tasks.fe`` (JSON summaries, binned histories and fields) and
-draw; the tables and studies are computed by ``penetration.fe_studies`` in the tasks ``tasks.fe_tables`` and
+draw; the tables and studies are computed by ``penetration.studies.fe_results`` in the tasks ``tasks.fe_tables`` and
 ``tasks.fe_studies``, which call the drawing functions here (``*_figure``) with the frames they wrote.
 """
 from __future__ import annotations
@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 import matplotlib.pyplot as plt
 
-from ..io import committed_study, load_json, task, write_csv
-from ..reference import TABLE3_NOSES, UNITS, load_reference
+from ..pipeline.io import committed_study, load_json, task, write_csv
+from ..paper.reference import TABLE3_NOSES, UNITS, load_reference
 
 from .common import PAPER_STYLE, color, do1_histories, figure, save
 

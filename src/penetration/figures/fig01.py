@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 from ..units import MPA
 from .common import figure, save
 

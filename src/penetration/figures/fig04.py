@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pandas as pd
 
-from ..io import read_inference, task, write_csv
+from ..pipeline.io import read_inference, task, write_csv
 from .common import color, figure, save
 
 LABELS = {"fig4_crh3": "CRH 3 (ODG)", "fig4_crh5": "CRH 5 (ABG)", "fig4_double_ogive": "double ogive (ACDG, inferred)"}

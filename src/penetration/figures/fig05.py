@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 from .common import color, figure, save
 from .fig04 import LABELS, fig5_axis
 

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..io import read_inference, task, write_csv
+from ..pipeline.io import read_inference, task, write_csv
 from ..units import MM
 from .common import figure, save
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import read_noses, task, write_csv
+from ..pipeline.io import read_noses, task, write_csv
 from .common import color, figure, save
 
 ORDER = (("fig4_crh3", "CRH 3"), ("fig4_double_ogive", "double ogive (inferred)"), ("fig4_crh5", "CRH 5"))

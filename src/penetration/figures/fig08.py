@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..io import load_json, task, write_csv
+from ..pipeline.io import load_json, task, write_csv
 from ..units import G0
 from .common import color, ending_at_rest, figure, save
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..reference import TABLE3_NOSES, VELOCITIES, load_reference
-from ..io import task, write_csv
+from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
+from ..pipeline.io import task, write_csv
 from .common import color, figure, save
 
 LABELS = {"crh3": "CRH 3", "crh45": "CRH 4.5", "double_ogive": "double ogive", "minimum_nstar": "minimum N* (Jones)"}

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 from .common import figure, save
 
 LEVELS = ("analytic", "trajectory", "cavity", "fe")

@@ -21,8 +21,8 @@ import numpy as np
 import pandas as pd
 
 from ..figures.accuracy_cost import accuracy_cost_drawing
-from ..io import task, write_csv
-from ..laboratory import users_rows
+from ..pipeline.io import task, write_csv
+from ..studies.laboratory import users_rows
 
 OTHER_NOSES = ("crh45", "crh3")
 CONTRASTS = ("DO/CRH 4.5", "CRH 4.5/CRH 3", "DO/CRH 3")

@@ -7,13 +7,14 @@ import time
 import numpy as np
 import pandas as pd
 
-from .. import concrete, reference
-from ..cavity_level import SigmaTable, calibrate_parameter, cavity_settings, cavity_trajectory, sigma_table
-from ..hjc import LOCKS, PointState, drive
-from ..hjc_effects import MATERIAL_EFFECTS
-from ..io import load_json, read_inference, task, write_csv, write_json
-from ..nstar import nstar
-from ..resistance import nose_surface
+from ..concrete import material as concrete
+from ..paper import reference
+from ..cavity.level import SigmaTable, calibrate_parameter, cavity_settings, cavity_trajectory, sigma_table
+from ..concrete.hjc import LOCKS, PointState, drive
+from ..concrete.effects import MATERIAL_EFFECTS
+from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
+from ..nose.nstar import nstar
+from ..analytic.resistance import nose_surface
 from .common import CAVITY, calibration_row, do1_shot, projectile, scene_from_inputs
 
 

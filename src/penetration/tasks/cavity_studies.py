@@ -7,14 +7,14 @@ import time
 import numpy as np
 import pandas as pd
 
-from .. import concrete, reference
-from ..cavity import Controls, Mesh, expand
-from ..cavity_level import (INTERPOLATIONS, calibrate_parameter, cavity_settings, cavity_trajectory,
-                            quasi_static_stress, sigma_table)
-from ..geometry import DoubleOgive
-from ..hjc_effects import MATERIAL_EFFECTS
-from ..io import load_json, read_inference, task, write_csv
-from ..resistance import nose_surface
+from ..concrete import material as concrete
+from ..paper import reference
+from ..cavity.expansion import Controls, Mesh, expand
+from ..cavity.level import (INTERPOLATIONS, calibrate_parameter, cavity_settings, cavity_trajectory, quasi_static_stress, sigma_table)
+from ..nose.geometry import DoubleOgive
+from ..concrete.effects import MATERIAL_EFFECTS
+from ..pipeline.io import load_json, read_inference, task, write_csv
+from ..analytic.resistance import nose_surface
 from .cavity import calibrated_context, read_sigma_table
 from .common import CAVITY, do1_shot, scene_from_inputs
 

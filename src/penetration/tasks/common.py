@@ -2,8 +2,8 @@
 values of the projectile and the DO1 shot, and the committed rows of the DO1 calibrations."""
 from __future__ import annotations
 
-from ..io import load_json, read_inference
-from ..scenes import read_scene, resolve, scene_name
+from ..pipeline.io import load_json, read_inference
+from ..pipeline.scenes import read_scene, resolve, scene_name
 
 CALIBRATIONS = ("do1", "table3_calc")
 PLAIN = ("analytic", "trajectory")  # the levels of workflow/scenes/*.yaml

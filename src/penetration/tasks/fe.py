@@ -16,14 +16,16 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import concrete, reference
+from ..concrete import material as concrete
+from ..paper import reference
 from ..fe import state as fe_state
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
 from ..fe.solver import Unstable
-from ..fe_level import calibrate_failure_strain, calibrate_strength_scale, domain_of, scene_settings, scene_spec
-from ..io import load_json, read_inference, task, write_csv, write_json
-from ..shots import expected_depth
+from ..fe.level import calibrate_failure_strain, calibrate_strength_scale, domain_of, scene_settings, scene_spec
+from ..pipeline.dispatch import code_closure
+from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
+from ..shots.fields import expected_depth
 from .common import calibration_row, do1_shot, scene_from_inputs
 
 FE = ("fe",)
@@ -37,11 +39,8 @@ class TrialMemo(dict):
 
     def __init__(self, folder, *definition, key="fs"):
         super().__init__()
-        from .. import numba_cache
-        fe_sources = sorted((numba_cache.PACKAGE / "fe").glob("*.py")) + [numba_cache.PACKAGE / "fe_level.py",
-                                                                         numba_cache.PACKAGE / "hjc.py"]
         h = hashlib.sha256(repr(definition).encode())
-        for f in fe_sources:
+        for f in code_closure("fe.level"):   # the calibrations' module and every module it runs on
             h.update(f.read_bytes())
         self.path = Path(folder) / f"trials_{h.hexdigest()[:16]}.jsonl"
         if self.path.is_file():
@@ -236,7 +235,7 @@ def fe_ensemble_shot(inputs, outputs, params):
 @task
 def fe_meshes(inputs, outputs, params):
     """Outlines of the three Table 3 projectiles and the target mesh lines near the nose, for Fig 13."""
-    from ..geometry import Ogive
+    from ..nose.geometry import Ogive
     do1 = read_inference(inputs.do1)["nose"]
     cfg = params.cfg
     s = Settings.from_config(cfg, params.profile)

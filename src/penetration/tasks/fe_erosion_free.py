@@ -8,11 +8,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .. import grid_study
-from ..mesh_convergence import grid_refinement
+from ..studies import grid as grid_study
+from ..studies.mesh_convergence import grid_refinement
 from ..figures.fe_convergence import grid_convergence_figure
-from ..io import load_json, task, write_csv, write_json
-from ..reference import TABLE3_NOSES, VELOCITIES, load_reference
+from ..pipeline.io import load_json, task, write_csv, write_json
+from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
 from .common import calibration_row
 
 
@@ -80,7 +80,7 @@ def fe_erosion_free_calibrated(inputs, outputs, params):
 @task
 def fe_quasi_static_run(inputs, outputs, params):
     """One driven run of the quasi-static check (its mesh and hole from the wildcards)."""
-    from ..fe.quasi_static import driven_force
+    from ..fe.verification.quasi_static import driven_force
 
     write_json(driven_force(float(params.across), float(params.hole), float(params.velocity), guide=bool(params.guide)),
                outputs.json)
@@ -91,7 +91,7 @@ def fe_quasi_static(inputs, outputs, params):
     """Per hole: the force over pi a^2 on each mesh (coarse first), its grid refinement (observed order, Richardson,
     GCI), the cavity stresses it is set against and whether the refined force lies within the band set beforehand
     (``params.band``, relative) of the cavity level's sigma_n."""
-    from ..fe.quasi_static import references
+    from ..fe.verification.quasi_static import references
 
     runs = pd.DataFrame([load_json(p) for p in inputs.runs]).sort_values(["pilot_hole", "elements_across"],
                                                                            ascending=[False, True], ignore_index=True)

@@ -4,7 +4,7 @@ The semi-infinite target (radius 1.2 m, non-reflecting sides and bottom, as deep
 (radius 2.031 m, depth 5.4 m, free faces) differ in four things. The study runs DO1 on a chain of targets that
 changes one at a time (params.chain, in order; each target's faces and sizes are read from its shots) and gives
 each change its effect on the mean depth over realisations of the erosion chaos, with Welch's interval, and the
-whole difference from the first target to the last (penetration.fe_studies).
+whole difference from the first target to the last (penetration.studies.fe_results).
 """
 from __future__ import annotations
 
@@ -12,10 +12,10 @@ import math
 
 import pandas as pd
 
-from .. import fe_studies
+from ..studies import fe_results as fe_studies
 from ..fe.shot import TargetSpec
 from ..figures.fe_rear_face import rear_face_figure
-from ..io import load_json, task, write_csv
+from ..pipeline.io import load_json, task, write_csv
 
 
 def _target(s):

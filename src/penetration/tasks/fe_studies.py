@@ -3,18 +3,17 @@ nose contrasts against the mesh, over realisations of the erosion chaos, over ba
 size.
 
 Each reads the committed Table 3 files and the shots' and calibrations' records, computes with
-``penetration.fe_studies``, writes the CSVs and draws them with the drawing functions of ``figures.fe_level`` and
+``penetration.studies.fe_results``, writes the CSVs and draws them with the drawing functions of ``figures.fe_level`` and
 ``figures.fe_convergence``.
 """
 from __future__ import annotations
 
 import pandas as pd
 
-from .. import fe_studies
+from ..studies import fe_results as fe_studies
 from ..figures.fe_convergence import contrast_extrapolation_figure
-from ..figures.fe_level import (contrast_band_figure, contrast_convergence_figure, contrast_ensemble_figure,
-                                mesh_study_figure)
-from ..io import load_json, task, write_csv
+from ..figures.fe_level import (contrast_band_figure, contrast_convergence_figure, contrast_ensemble_figure, mesh_study_figure)
+from ..pipeline.io import load_json, task, write_csv
 
 CONTRASTS = list(fe_studies.CONTRASTS)
 

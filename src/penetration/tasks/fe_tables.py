@@ -1,20 +1,20 @@
 """Tasks of the FE level's tables (rule all): Table 3 and its contrasts, the contrasts over Fig 15's sweep, the audit
 summary and the FE rows of the diff.
 
-Each reads the per-shot summaries of ``tasks.fe`` and the committed tables, computes with ``penetration.fe_studies``
-and ``penetration.diff``, and writes under figures/fe/{profile}/.
+Each reads the per-shot summaries of ``tasks.fe`` and the committed tables, computes with ``penetration.studies.fe_results``
+and ``penetration.paper.diff``, and writes under figures/fe/{profile}/.
 """
 from __future__ import annotations
 
 
 import pandas as pd
 
-from .. import diff as D
-from .. import fe_studies
+from ..paper import diff as D
+from ..studies import fe_results as fe_studies
 from ..figures.fe_level import contrasts_figure, shots_frame
-from ..io import committed_study, load_json, task, write_csv, write_json, write_text
-from ..reference import TABLE3_NOSES, VELOCITIES, load_reference
-from ..scenes import scene_data
+from ..pipeline.io import committed_study, load_json, task, write_csv, write_json, write_text
+from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
+from ..pipeline.scenes import scene_data
 
 
 def _paper_table3(refs):

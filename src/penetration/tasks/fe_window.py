@@ -13,7 +13,7 @@ if the whole Welch t interval of the difference of the means (at
 ``confidence``; two one-sided tests at (1 - confidence) / 2 each) lies within
 +-``goal_pct`` per cent of the whole domain's mean depth. The interval is
 divided by the whole domain's mean as if it were exact (its own uncertainty,
-a few tenths of a per cent of it, is left out; penetration.fe_studies.window_summary).
+a few tenths of a per cent of it, is left out; penetration.studies.fe_results.window_summary).
 """
 from __future__ import annotations
 
@@ -22,9 +22,9 @@ from types import SimpleNamespace
 import pandas as pd
 
 from ..fe.spec import Settings
-from ..fe_level import DOMAINS
-from ..fe_studies import window_summary
-from ..io import task, write_csv
+from ..fe.level import DOMAINS
+from ..studies.fe_results import window_summary
+from ..pipeline.io import task, write_csv
 from .fe import scene_shot
 
 

@@ -6,10 +6,11 @@ import json
 import numpy as np
 import pandas as pd
 
-from .. import inference, reference
-from ..geometry import Cone, MinimumNstar, Ogive
-from ..io import nose_record, read_inference, task, write_csv, write_json
-from ..nstar import cumulative_nstar, nstar, shape_rate
+from ..nose import inference
+from ..paper import reference
+from ..nose.geometry import Cone, MinimumNstar, Ogive
+from ..pipeline.io import nose_record, read_inference, task, write_csv, write_json
+from ..nose.nstar import cumulative_nstar, nstar, shape_rate
 from .common import projectile
 
 

@@ -1,163 +1,27 @@
-"""Tasks of users' shots at every level: the levels' context as the pipeline builds it, validation per level."""
+"""Tasks of users' shots at every level: validation per level, the HJC scaling rule, accuracy against cost, the sweep
+(the levels' context is built by ``shots.records``)."""
 from __future__ import annotations
 
 import math
 import time
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from .. import concrete, laboratory, reference, triaxial
-from ..cavity_level import cavity_settings, cavity_trajectory, sigma_table
-from ..config import element_sizes, load_with, machine_name
-from ..dop import penetration_depth
-from ..errors import ParameterError
-from ..fe.shot import Settings
+from ..concrete import material as concrete, triaxial
+from ..studies import laboratory
+from ..paper import reference
+from ..cavity.level import cavity_settings, cavity_trajectory, sigma_table
+from ..pipeline.config import machine_name
+from ..analytic.dop import penetration_depth
 from ..figures.hjc_scaling import hjc_scaling_figure
 from ..figures.validation_levels import KEYS, validation_figure
-from ..geometry import make_nose
-from ..io import load_json, read_inference, read_rows, task, write_csv, write_rows
-from ..levels import Context, UserShot, output_fields, predict_rows, run
-from ..nstar import nstar
-from ..resistance import Target
-
-
-def context_from_files(cfg, reference_path, cavity_cal=None, fe_cal=None, profile="full", strength_law=None) -> Context:
-    """The levels' context from the config mapping (its concrete, cavity and validation sections), the reference CSV
-    and the DO1 calibration files (None: that level is left without its calibration and refuses to run, saying how
-    to build it). The base concrete is concrete.configured's, as at the cavity and fe levels. A mapping without an fe
-    section leaves the fe level unconfigured (the trajectory and cavity levels do not read it)."""
-    refs = reference.load_reference(reference_path)
-    if "fe" in cfg and "element_size" not in cfg["fe"]["profiles"][profile]:   # the config file as written
-        element_sizes(cfg, 0.5 * refs[cfg["projectile"]["diameter"]].si)
-    mesh, controls = cavity_settings(cfg["cavity"])
-    fe = {"fe_settings": Settings.from_config(cfg["fe"], profile), "fe_target_radius": cfg["fe"]["target_radius"]} if "fe" in cfg else {}
-    ctx = Context(base=concrete.configured(refs, cfg["concrete"]),
-                  strength_law=strength_law or cfg["validation"]["strength_law"],
-                  cavity_velocities=tuple(cfg["cavity"]["velocities"]), cavity_mesh=mesh, cavity_controls=controls,
-                  cavity_rtol=cfg["cavity"]["rtol"], **fe)
-    if cavity_cal is not None:
-        cal = _calibration(cavity_cal, "strength_scale")
-        ctx.strength_scale = cal["strength_scale"]
-        ctx.strength_scale_source = f"{cal['source']}, {cavity_cal}"
-    if fe_cal is not None:
-        if "fe" not in cfg:
-            raise ValueError(f"{fe_cal}: an fe calibration needs the config's fe section (its mesh), which is missing")
-        cal = _calibration(fe_cal, "fs")
-        if not math.isclose(cal["element_size"], ctx.fe_settings.element_size):
-            raise ValueError(f"{fe_cal}: calibrated at element size {cal['element_size']} m, the {profile} profile "
-                             f"meshes at {ctx.fe_settings.element_size} m")
-        ctx.failure_strain = cal["fs"]
-        ctx.fe_reference_radius = cal["element_size"] * cal["elements_across_radius"]
-        ctx.failure_strain_source = f"{cal['source']} at {cal['elements_across_radius']:.3g} elements across the radius, {fe_cal}"
-    return ctx
-
-
-# The committed records of the calibrations the command line's levels carry over, relative to the pipeline's
-# directory: the DO1 calibrations (rules cavity_calibration_record and fe_calibration_record) and the cavity level's
-# calibration on the laboratory shots (rule calibrate_cavity_laboratory, its fold ``all``)
-CAVITY_CALIBRATION = "figures/calibration_cavity_do1.csv"
-FE_CALIBRATION = "figures/fe/{profile}/calibration_fe_do1.csv"
-CAVITY_LABORATORY = "figures/calibration_cavity_laboratory.csv"
-FE_LABORATORY = "figures/fe/{profile}/calibration_fe_laboratory.csv"
-CALIBRATIONS = ("laboratory", "do1")
-
-
-def _calibration(path, key) -> dict:
-    """A calibration as the levels read it: a rule's JSON (results/), a committed one-row DO1 record (figures/) whose
-    ``value`` is the fitted ``key``, or a laboratory record (its fold ``all``); ``source`` says which it is."""
-    if str(path).endswith(".json"):
-        return {"source": "calibrated on DO1", **load_json(path)}
-    table = pd.read_csv(path)
-    source = "fitted on the laboratory shots" if "fold" in table else "calibrated on DO1"
-    if "fold" in table:
-        table = table[table.fold == "all"]
-        if len(table) != 1:
-            raise ValueError(f"{path}: a laboratory calibration needs exactly one row of fold 'all', found {len(table)}")
-    row = table.iloc[0]
-    if row.parameter != key:
-        raise ValueError(f"{path}: a calibration of {row.parameter}, not of {key}")
-    out = {key: float(row.value), "source": source}
-    if "element_size_m" in row:
-        out.update(element_size=float(row.element_size_m), elements_across_radius=float(row.elements_across_radius))
-    return out
-
-
-def cavity_calibration_path(root, calibration) -> Path:
-    """The committed record of the cavity level's strength scale: ``laboratory``, ``do1`` or a file (a record of
-    either form: a laboratory table or a one-row calibration with parameter strength_scale)."""
-    root = Path(root)
-    if calibration == "laboratory":
-        return root / CAVITY_LABORATORY
-    if calibration == "do1":
-        return root / CAVITY_CALIBRATION
-    return Path(calibration)
-
-
-def fe_calibration_record(root, profile, calibration) -> tuple[Path, str]:
-    """The committed record of the fe level's failure strain at ``profile``'s mesh and which calibration it is:
-    its laboratory one unless ``calibration`` is ``do1`` or the profile has none, else DO1's."""
-    lab = Path(root) / FE_LABORATORY.format(profile=profile)
-    if calibration != "do1" and lab.is_file():
-        return lab, "laboratory"
-    return Path(root) / FE_CALIBRATION.format(profile=profile), "do1"
-
-
-def context_from_pipeline(root=".", profile="full", strength_law=None, calibration="laboratory") -> Context:
-    """The levels' context as the pipeline builds it, from the files under ``root``: the config, the reference and
-    the committed calibration records (a level whose record is missing refuses to run, saying which file to build).
-
-    ``calibration``: ``laboratory`` (the default: the cavity level's strength scale and the fe level's failure strain
-    at the profile's mesh fitted on the laboratory shots; where the profile has no fe laboratory record the fe level
-    carries its DO1 failure strain over, saying so in its source), ``do1`` (both levels calibrated on DO1) or the path
-    of a cavity calibration record (the fe level then as with ``laboratory``)."""
-    root = Path(root)
-    cfg = load_with(root / "workflow/config.yaml", {})  # the strict loader: a key given twice, NaN or inf refused
-    cav = cavity_calibration_path(root, calibration)
-    if calibration not in CALIBRATIONS and not cav.is_file():
-        raise ParameterError("argument", "--calibration", calibration, f"one of {list(CALIBRATIONS)} or an existing "
-                             "calibration record (CSV)")
-    fe, fe_calibration = fe_calibration_record(root, profile, calibration)
-    ctx = context_from_files(cfg, root / cfg["reference"], cav if cav.is_file() else None, fe if fe.is_file() else None,
-                             profile, strength_law)
-    if not cav.is_file():
-        ctx.strength_scale_record = str(cav.relative_to(root)) if cav.is_relative_to(root) else str(cav)
-    if fe.is_file() and fe_calibration == "do1" and calibration != "do1":
-        ctx.failure_strain_source += f" (the {profile} mesh has no laboratory calibration: DO1's)"
-    ctx.fe_profile = profile
-    return ctx
-
-
-VALIDATION_SUMMARY = "figures/fe/{profile}/validation_levels_summary.csv"
-
-
-def validated_accuracy(root=".", profile="full", calibration="laboratory"):
-    """(the development shots' ValidatedRange, level -> its errors on them) from the committed outputs under
-    ``root`` (the config's validation.shots and figures/fe/PROFILE/validation_levels_summary.csv): per level its
-    primary row; for the calibrated levels the row of the calibration the level runs with (``calibration``; the fe
-    level's is DO1's where the profile has no laboratory record, as context_from_pipeline takes it). A level whose
-    calibration has no row (a record of the user's own, or a validation built before that calibration) is left out.
-    None where either file is missing."""
-    from ..trust import ValidatedRange
-    root = Path(root)
-    summary = root / VALIDATION_SUMMARY.format(profile=profile)
-    try:
-        cfg = load_with(root / "workflow/config.yaml", {})
-        _, rows = read_rows(root / cfg["validation"]["shots"])
-        table = pd.read_csv(summary)
-    except (OSError, KeyError, ValueError):
-        return None
-    if "primary" in table:
-        table = table[table.primary.astype(bool)]
-    _, fe_calibration = fe_calibration_record(root, profile, calibration)
-    errors = {}
-    for level, g in table.groupby("level", sort=False):
-        if level in ("cavity", "fe"):
-            g = g[g.calibration == (fe_calibration if level == "fe" else calibration)]
-        if len(g):
-            errors[level] = g.iloc[0].to_dict()
-    return ValidatedRange.from_rows(rows), errors
+from ..nose.geometry import make_nose
+from ..pipeline.io import load_json, read_inference, read_rows, task, write_csv, write_rows
+from ..shots.ladder import UserShot, output_fields, predict_rows, run
+from ..shots.records import context_from_files
+from ..nose.nstar import nstar
+from ..analytic.resistance import Target
 
 
 def _optional(inputs, name):

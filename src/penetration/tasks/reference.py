@@ -29,8 +29,8 @@ import subprocess
 import numpy as np
 import pandas as pd
 
-from .. import diff as diff_rows, reference
-from ..io import committed_study, load_json, task, write_csv, write_text
+from ..paper import diff as diff_rows, reference
+from ..pipeline.io import committed_study, load_json, task, write_csv, write_text
 
 
 def _bands_dict(path, noses_table):

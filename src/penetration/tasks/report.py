@@ -20,7 +20,7 @@ from jinja2 import DictLoader
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 
-from ..io import task, write_text
+from ..pipeline.io import task, write_text
 
 
 @task

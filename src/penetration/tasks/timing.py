@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 
 
 def _fields(pattern: str):

@@ -7,11 +7,11 @@ import time
 import numpy as np
 import pandas as pd
 
-from ..dop import penetration_depth
-from ..geometry import with_radius
-from ..io import load_json, task, write_csv
-from ..nstar import nstar
-from ..trajectory import assemble, integrate
+from ..analytic.dop import penetration_depth
+from ..nose.geometry import with_radius
+from ..pipeline.io import load_json, task, write_csv
+from ..nose.nstar import nstar
+from ..analytic.trajectory import assemble, integrate
 from .common import PLAIN, scene_from_inputs
 
 

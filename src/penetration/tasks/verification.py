@@ -1,12 +1,12 @@
-"""Tasks of the verification problems of the cavity level (penetration.cavity_verification) and of the FE level
+"""Tasks of the verification problems of the cavity level (penetration.cavity.verification) and of the FE level
 (penetration.fe.verification): every check with its reference and accepted interval, as a table."""
 from __future__ import annotations
 
 import pandas as pd
 
-from .. import cavity_verification as cavity_checks
+from ..cavity import verification as cavity_checks
 from ..fe import verification
-from ..io import task, write_csv
+from ..pipeline.io import task, write_csv
 
 
 @task

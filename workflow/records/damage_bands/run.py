@@ -23,12 +23,12 @@ import numpy as np
 import pandas as pd
 import yaml
 
-from penetration import reference
+from penetration.paper import reference
 from penetration.fe import state as fe_state
 from penetration.fe.shot import RunSpec, TargetSpec, run_shot
-from penetration.shots import expected_depth
-from penetration.io import load_json
-from penetration import concrete
+from penetration.shots.fields import expected_depth
+from penetration.pipeline.io import load_json
+from penetration.concrete import material as concrete
 from penetration.tasks.common import scene_from_inputs
 from penetration.fe.shot import Settings
 
