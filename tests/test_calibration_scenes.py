@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 import yaml
 
-from penetration.analytic.fits import calibrate_strength, diameter_interval, fit_strength, infer_diameter
-from penetration.pipeline.config import ConfigError
 from penetration.analytic.dop import penetration_depth
-from penetration.nose.geometry import Ogive
+from penetration.analytic.fits import calibrate_strength, diameter_interval, fit_strength, infer_diameter
 from penetration.analytic.resistance import Target
+from penetration.nose.geometry import Ogive
+from penetration.pipeline.config import ConfigError
 from penetration.pipeline.scenes import read_scene, resolve, velocities
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -2,11 +2,11 @@
 import numpy as np
 import pytest
 
-from penetration.cavity.level import SigmaTable, cavity_trajectory
 from penetration.analytic.dop import penetration_depth
+from penetration.analytic.resistance import Target
+from penetration.cavity.level import SigmaTable, cavity_trajectory
 from penetration.nose.geometry import DoubleOgive, Ogive
 from penetration.nose.nstar import nstar
-from penetration.analytic.resistance import Target
 
 TG = Target(2440.0, 48e6, 6.69)
 
@@ -52,9 +52,10 @@ def test_table_rejects_bad_velocities(v):
 def hjc_table():
     """sigma_n(v) of Table 1 HJC concrete at a strength scale near the calibrated one."""
     from pathlib import Path
+
     from penetration.cavity.level import sigma_table
-    from penetration.paper.reference import load_reference
     from penetration.concrete.hjc import from_table1
+    from penetration.paper.reference import load_reference
     refs = load_reference(Path(__file__).resolve().parents[1] / "workflow/reference/paper_values.csv")
     mat = from_table1(lambda q: refs[f"table1.{q}"].si, strength_scale=0.6)
     v = [50.0, 100.0, 200.0, 400.0, 800.0, 1200.0, 2000.0]
@@ -80,6 +81,7 @@ def test_hjc_level_finite_monotone_and_energy_closed_from_30_to_2500(hjc_table, 
 def test_calibration_recovers_the_parameter_that_made_the_depth(name, truth):
     """Round trip on a coarse table: the depth of a known parameter value gives that value back."""
     import dataclasses
+
     from penetration.cavity.expansion import Mesh
     from penetration.cavity.level import calibrate_parameter, sigma_table
     from penetration.concrete.hjc import HJC

@@ -3,7 +3,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from penetration.cavity.oracles import (dilatational_speed, elastic_fields, elastic_region_fields, elastic_wall_stress, epp_wall_stress, hill_static_pressure, mohr_coulomb_static_wall_stress, mohr_coulomb_wall_stress, plastic_solution)
+from penetration.cavity.oracles import (dilatational_speed, elastic_fields, elastic_region_fields, elastic_wall_stress,
+                                        epp_wall_stress, hill_static_pressure, mohr_coulomb_static_wall_stress,
+                                        mohr_coulomb_wall_stress, plastic_solution)
 
 RHO0, K, G, Y = 2440.0, 16e9, 14.86e9, 100e6
 CD = dilatational_speed(RHO0, K, G)

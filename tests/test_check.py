@@ -5,7 +5,8 @@ import subprocess
 import pandas as pd
 import pytest
 
-from penetration.tasks.reference import (cell_tolerances, checked_outputs, column_tolerances, compare, frames_differ, reproduction_problems)
+from penetration.tasks.reference import (cell_tolerances, checked_outputs, column_tolerances, compare, frames_differ,
+                                         reproduction_problems)
 
 HEAD = "item,quantity,case,paper,ours,rel_err,tol,status\n"
 CHECK = {"factor": 10.0,
@@ -91,6 +92,7 @@ def test_every_committed_output_csv_is_checked():
     """Each CSV committed under figures/ (timing files aside) has a tolerance in check.outputs (the paper's target)
     or check.studies (the studies'), and none in both."""
     from pathlib import Path
+
     import yaml
     from conftest import committed_files
     root = Path(__file__).resolve().parents[1]
@@ -211,6 +213,7 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     chaos does the rest: each passes the reproduction check against the other. The FE precision classes hold
     what honest builds differ by."""
     from pathlib import Path
+
     import yaml
     root = Path(__file__).resolve().parents[1]
     check = yaml.safe_load((root / "workflow/config.yaml").read_text())["check"]
@@ -222,8 +225,9 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     # the records' window studies ran 4 realisations per domain and the pipeline's runs 16: a different study
     files = [f for f in files if not f.endswith(("/window.csv", "/window_summary.csv"))]
     assert len(files) == 26
-    from conftest import committed
     import io
+
+    from conftest import committed
     moved = 0
     restructured = set()
     # the HJC scaling rule of users' shots changed after the records (the fib Model Code 2010's moduli and tension):

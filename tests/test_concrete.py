@@ -13,9 +13,9 @@ import pytest
 import yaml
 
 from penetration.concrete import material as concrete
-from penetration.errors import ParameterError
-from penetration.concrete.hjc import HJC
 from penetration.concrete.effects import MATERIAL_EFFECTS
+from penetration.concrete.hjc import HJC
+from penetration.errors import ParameterError
 from penetration.paper.reference import load_reference
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -3,8 +3,8 @@ the outputs committed at git HEAD give. This test checks the committed documents
 from pathlib import Path
 
 import pytest
-
 from conftest import ROOT, committed, committed_files
+
 from penetration.pipeline.docs import BLOCK, BLOCKS, next_mesh_cost, render
 
 DOCUMENTS = ["README.md"] + [p for p in committed_files("docs") if p.endswith(".md")]

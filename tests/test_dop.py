@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from penetration.analytic.dop import geometry_function, impact_function, li_chen_depth, penetration_depth
+from penetration.analytic.resistance import Target, crater_velocity_squared, strength_factor
 from penetration.nose.geometry import Flat, MinimumNstar, Ogive
 from penetration.nose.nstar import nstar
-from penetration.analytic.resistance import Target, crater_velocity_squared, strength_factor
 
 TG = Target(2440.0, 48e6, 6.69)
 

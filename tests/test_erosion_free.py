@@ -169,9 +169,9 @@ def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
     """A CRH 3 shot into the erosion-free target on a coarse mesh: no element of the target is eroded and no mass
     leaves the model (eroded mass exactly 0, no element ERODED); what the guard ejected lies above the struck face
     and its mass is still on the nodes; the energy audit closes within 0.1 %."""
+    from penetration.concrete.hjc import HJC
     from penetration.fe.shot import run_shot
     from penetration.nose.geometry import Ogive
-    from penetration.concrete.hjc import HJC
     nose = Ogive(3.0, 0.07)
     spec = RunSpec(nose, 81.1, 500.0, HJC(), Settings(element_size=0.07 / 4, window_ahead=0.8),
                    TargetSpec(formulation="erosion_free"), expected_depth=2.5)
@@ -213,8 +213,8 @@ def test_the_crater_wall_is_ejected_where_it_thins_only_within_the_crater_depth_
 def test_the_crater_wall_is_ejected_only_once_the_tip_is_past_crater_thin_after():
     """Model.rezone gates the crater's ejection on the projectile's tip: before crater_thin_after nothing below the
     face goes, after it the thinned crater wall does; a negative crater_thin_after is refused, naming the field."""
-    from penetration.fe.model import Model
     from penetration.concrete.hjc import HJC
+    from penetration.fe.model import Model
     with pytest.raises(ParameterError, match="crater_thin_after"):
         Controls(crater_thin_after=-1.0)
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
@@ -237,9 +237,9 @@ def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_
     """erosion.retire on the erosion-free target: an element that lost its shape above the struck face is ejected
     (its mass kept on the nodes), one less than crater_depth below it is crater debris (ejected, its mass booked as
     such), and one deeper stops the run with its place named."""
+    from penetration.concrete.hjc import HJC
     from penetration.fe.erosion import InsideTarget, retire
     from penetration.fe.model import Model
-    from penetration.concrete.hjc import HJC
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
     m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
                                  crater_depth=0.08))
@@ -265,9 +265,9 @@ def test_the_guard_ejects_a_wall_element_behind_the_tail_as_wall_debris_and_stop
     above the tip (behind the projectile's tail) is wall debris (ejected, its mass kept on the nodes and booked as
     wall debris, not as crater debris); one with a node within that reach of the tip still stops the run, and so does
     any deep one when wall_debris_behind is None; a negative wall_debris_behind is refused, naming the field."""
+    from penetration.concrete.hjc import HJC
     from penetration.fe.erosion import InsideTarget, retire
     from penetration.fe.model import Model
-    from penetration.concrete.hjc import HJC
     with pytest.raises(ParameterError, match="wall_debris_behind"):
         Controls(wall_debris_behind=-0.1)
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
@@ -324,8 +324,8 @@ def test_the_1d_cavity_reference_meets_the_elastic_static_wall_stress(sphere, fa
     the elastic static one at the zone's mid-radius r (Lame): 4 G u a^2/r^3 for a spherical cavity and 2 G u a/r^2
     for a cylindrical one in plane strain, u = V t averaged over the second half of the run (the waves have long left
     the wall), within 1 %."""
-    from penetration.fe.verification.cavity_reference import wall_stress
     from penetration.concrete.hjc import HJC
+    from penetration.fe.verification.cavity_reference import wall_stress
     material = HJC()
     V, a, t_end, r_out, zones = 0.002, 0.01, 2e-4, 1.5, 200
     ours = wall_stress(material, V, a, t_end, 0.5 * t_end, r_out=r_out, zones=zones, sphere=sphere)

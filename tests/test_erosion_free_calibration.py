@@ -8,9 +8,9 @@ import pytest
 import yaml
 
 from penetration.fe import level as fe_level
-from penetration.paper import reference
 from penetration.fe.shot import RunSpec
 from penetration.nose.geometry import Ogive
+from penetration.paper import reference
 from penetration.pipeline.dispatch import fe_calibrated_scenes
 from penetration.pipeline.scenes import read_scene, resolve
 
@@ -178,6 +178,7 @@ def test_a_stopped_erosion_free_shot_is_recorded_and_a_stopped_eroding_shot_fail
     """The grid study's shot that stops is its result (status stopped, the diagnostic, no depth, empty tables); an
     eroding shot that stops fails its job."""
     import math
+
     from penetration.fe.solver import Unstable
     from penetration.tasks import fe as tasks_fe
 

@@ -4,13 +4,12 @@ import math
 import numpy as np
 import pytest
 
-from penetration.fe import Controls, Grid, MeshSpec, Model, Projectile, Unstable, body_outline, build, run
-from penetration.fe import state as fe_state
+from penetration.concrete.hjc import HJC
+from penetration.fe import (Controls, Grid, MeshSpec, Model, Projectile, Unstable, body_outline, build, run,
+                            state as fe_state)
 from penetration.fe.nodes import node_pass
 from penetration.fe.verification import setups
 from penetration.nose.geometry import Flat, Ogive
-from penetration.concrete.hjc import HJC
-
 
 # one element pass over every row, and the nodal force sums by the solver's own gather (the verification's helpers;
 # the verification problems themselves, the patch test, rigid translation and penetration audit among them, run in
@@ -242,6 +241,7 @@ def test_a_check_row_carries_its_deviation_and_verdict():
 def test_body_outline_does_not_follow_round_off_in_the_nose():
     """numpy's vector maths differ in the last bit between CPUs; the rigid body the erosion sees must not."""
     from types import SimpleNamespace
+
     from penetration.nose.geometry import MinimumNstar
     nose = MinimumNstar(0.07, Ogive(4.5, 0.07).length)
     x, y = nose.outline(400)

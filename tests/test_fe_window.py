@@ -5,9 +5,9 @@ import pandas as pd
 import pytest
 from scipy import stats
 
+from penetration.concrete.hjc import HJC
 from penetration.fe.shot import RunSpec, Settings, run_shot
 from penetration.nose.geometry import Ogive
-from penetration.concrete.hjc import HJC
 from penetration.tasks.fe_window import window_summary
 
 

@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from penetration.errors import ParameterError
 from penetration.concrete.hjc import HJC, PointState, drive, fracture_strain, loading_pressure, strength
+from penetration.errors import ParameterError
 
 MAT = HJC()
 Q = MAT.as_array()

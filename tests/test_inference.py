@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 from penetration.nose.geometry import Ogive
-from penetration.nose.inference import (K_CONVENTIONS, Fig4Rule, InferenceError, Table4Rule, banded_double_ogive, infer_fig4, infer_table4, k_band)
+from penetration.nose.inference import (K_CONVENTIONS, Fig4Rule, InferenceError, Table4Rule, banded_double_ogive,
+                                        infer_fig4, infer_table4, k_band)
 from penetration.nose.nstar import nstar
 
 

@@ -11,12 +11,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from penetration.concrete import material as concrete
-from penetration.shots import ladder as L
 from penetration.cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
+from penetration.concrete import material as concrete
+from penetration.concrete.hjc import HJC
 from penetration.errors import ParameterError
 from penetration.nose.geometry import Ogive
-from penetration.concrete.hjc import HJC
+from penetration.shots import ladder as L
 from penetration.shots.records import context_from_files, context_from_pipeline
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -276,6 +276,7 @@ def test_table3_cells_are_matched_by_velocity_and_nose_not_by_row():
     """accuracy_cost compares the FE tables (noses in the order crh3, crh45, double_ogive) with figures/table3.csv
     (double_ogive, crh45, crh3): the deviation of a cell must not depend on the order of the rows."""
     import pandas as pd
+
     from penetration.tasks.levels import cell_deviation
     ref = pd.DataFrame({"velocity_ms": [500, 500, 800, 800], "nose": ["double_ogive", "crh3"] * 2,
                         "paper_sim_m": [2.0, 1.0, 4.0, 3.0]})

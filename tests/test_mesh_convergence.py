@@ -4,8 +4,8 @@ import pandas as pd
 import pytest
 
 from penetration.studies import mesh_convergence as mc
-from penetration.studies.mesh_convergence import size_regression
 from penetration.studies.fe_results import extrapolation_rows
+from penetration.studies.mesh_convergence import size_regression
 
 
 def test_an_exact_line_is_extrapolated_exactly_with_no_interval():

@@ -14,9 +14,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from penetration.shots import ladder as L
 from penetration.nose.geometry import Cone, MinimumNstar, Ogive
 from penetration.pipeline.io import TargetError, write_csv
+from penetration.shots import ladder as L
 
 ROOT = Path(__file__).resolve().parents[1]
 SHOTS = ROOT / "workflow/data/experiments-dev.csv"
@@ -277,6 +277,7 @@ def test_the_shipped_config_is_finite_and_its_unfiltered_row_rule_still_picks_th
     """fig14_cutoff.csv's unfiltered rows (cutoff_hz written inf) take the fe_spike class: `where` names them by
     the text "inf" now, which the check reads as the number the committed column holds."""
     import numpy as np
+
     from penetration.pipeline.config import non_finite, read_yaml
     from penetration.tasks.reference import cell_tolerances
     cfg = read_yaml(ROOT / "workflow/config.yaml")
@@ -321,10 +322,10 @@ def test_sizes_beyond_the_machine_are_refused_with_their_bound(monkeypatch):
 def test_fe_mesh_estimate_counts_the_meshes_the_level_builds():
     """The config's element count is that of fe.mesh.build for the same mesh (within the columns the kernels'
     vector width adds)."""
-    from penetration.pipeline.config import fe_mesh_elements, read_yaml
     from penetration.fe.mesh import build
     from penetration.fe.shot import Settings, TargetSpec, mesh_spec
     from penetration.nose.geometry import Ogive
+    from penetration.pipeline.config import fe_mesh_elements, read_yaml
     fe = read_yaml(ROOT / "workflow/config.yaml")["fe"]
     for h in (0.0233333333333, 0.00875, 0.003):
         spec = mesh_spec(Ogive(3.0, 0.07), Settings.from_config(fe, None, h), TargetSpec(radius=fe["target_radius"]), 5.1)

@@ -2,8 +2,7 @@
 import math
 
 import numpy as np
-from hypothesis import assume, given, settings
-from hypothesis import strategies as st
+from hypothesis import assume, given, settings, strategies as st
 
 from penetration.errors import ParameterError
 from penetration.nose.geometry import DoubleOgive, MinimumNstar, Ogive

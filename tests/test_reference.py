@@ -55,6 +55,7 @@ def test_committed_diff_has_the_contract():
     """Checks the committed figures/diff.csv (git HEAD's, whatever the working tree holds)."""
     import csv
     import io
+
     from conftest import committed
     rows = list(csv.DictReader(io.StringIO(committed("figures/diff.csv"))))
     assert tuple(rows[0]) == COLUMNS

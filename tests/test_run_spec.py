@@ -5,9 +5,9 @@ from pathlib import Path
 
 import pytest
 
-from penetration.pipeline.config import read_yaml
 from penetration.errors import ParameterError
 from penetration.fe.spec import Controls, RunSpec, Settings, TargetSpec
+from penetration.pipeline.config import read_yaml
 from penetration.pipeline.scenes import SceneError, merge_patch, read_scene, scene_data, scene_files
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -5,11 +5,12 @@ import numpy as np
 import pytest
 
 from penetration.analytic.dop import penetration_depth
+from penetration.analytic.resistance import (Target, double_ogive_force_eq11, forrestal_stress, nose_force,
+                                             nose_surface, tunnel_force)
+from penetration.analytic.trajectory import assemble, integrate
 from penetration.errors import ParameterError
 from penetration.nose.geometry import Cone, DoubleOgive, Flat, MinimumNstar, Ogive
 from penetration.nose.nstar import nstar
-from penetration.analytic.resistance import (Target, double_ogive_force_eq11, forrestal_stress, nose_force, nose_surface, tunnel_force)
-from penetration.analytic.trajectory import assemble, integrate
 
 TG = Target(2440.0, 48e6, 6.69)
 FORRESTAL = ("crater", "static", "inertial")
@@ -96,9 +97,10 @@ def test_scene_schema_effects_are_the_registries():
     """Every effect a scene may name is a registered trajectory or material effect, and the reverse."""
     import json
     from pathlib import Path
+
+    from penetration.analytic.trajectory import EFFECTS
     from penetration.concrete.effects import MATERIAL_EFFECTS
     from penetration.pipeline.scenes import FE_EFFECTS
-    from penetration.analytic.trajectory import EFFECTS
     schema = json.loads((Path(__file__).resolve().parents[1] / "workflow/schemas/scene.schema.json").read_text())
     named = set(schema["properties"]["effects"]["items"]["enum"])
     assert named == set(EFFECTS) | set(MATERIAL_EFFECTS) | set(FE_EFFECTS)

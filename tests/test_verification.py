@@ -67,7 +67,8 @@ def test_all_checks_runs_every_registered_problem_in_order(module, monkeypatch):
 def test_every_problem_function_of_the_fe_table_is_registered():
     """A public function of fe.verification's problem modules (each returns checks) is in the table (registered by
     @problem)."""
-    from penetration.fe.verification import (contact as verification_contact, erosion_free as verification_erosion_free, mechanics as verification_mechanics)
+    from penetration.fe.verification import (contact as verification_contact, erosion_free as verification_erosion_free,
+                                             mechanics as verification_mechanics)
     registered = {getattr(f, "func", f).__name__ for f in V.PROBLEMS.values()}
     documented = {name for mod in (verification_mechanics, verification_contact, verification_erosion_free)
                   for name, f in vars(mod).items()

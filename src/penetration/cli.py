@@ -16,10 +16,10 @@ import textwrap
 import time
 from pathlib import Path
 
-from .pipeline.config import ConfigError
 from .errors import ParameterError
 from .nose.geometry import NOSES, make_nose
 from .nose.nstar import nstar
+from .pipeline.config import ConfigError
 from .units import NUMBER_FORM, parse_number
 
 KEYS_HELP = {
@@ -373,6 +373,7 @@ def _one_shot(args) -> int:
     rec["validated_accuracy"], rec["warnings"] = _trust(args, shot, args.model)
     if out is not None:
         import pandas as pd
+
         from .pipeline.io import write_csv
         cols = {"t": "t_s", "depth": "depth_m", "velocity": "velocity_m_s", "deceleration": "deceleration_m_s2"}
         try:

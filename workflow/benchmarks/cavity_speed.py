@@ -7,17 +7,17 @@ one warm-up run that compiles the kernels; then the median cost of one
 cavity-level trajectory (DO1 at 835 m/s, the configured trajectory rtol of the
 cavity scenes) with the crater law and with nose entry, for three noses.
 """
+import statistics
+import time
 from pathlib import Path
 
 from nstar_speed import machine, timed
-import statistics
-import time
 
 from penetration.cavity.expansion import Controls, Mesh, expand, stress_table
 from penetration.cavity.level import cavity_trajectory, sigma_table
-from penetration.pipeline.config import read_yaml
-from penetration.nose.geometry import DoubleOgive, Ogive
 from penetration.concrete.hjc import HJC
+from penetration.nose.geometry import DoubleOgive, Ogive
+from penetration.pipeline.config import read_yaml
 
 
 def main():

@@ -8,14 +8,13 @@ with its DOP error against Eq 9 at several tolerances.
 import time
 
 import numpy as np
+from nstar_speed import machine, timed
 
 from penetration.analytic.dop import penetration_depth
-from penetration.nose.geometry import DoubleOgive
-from penetration.nose.nstar import nstar
 from penetration.analytic.resistance import Target
 from penetration.analytic.trajectory import assemble, integrate
-
-from nstar_speed import machine, timed
+from penetration.nose.geometry import DoubleOgive
+from penetration.nose.nstar import nstar
 
 
 def main():

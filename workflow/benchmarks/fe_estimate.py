@@ -16,11 +16,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "src"))
 
-from penetration.shots import ladder as L  # noqa: E402
-from penetration.pipeline.config import cpu_model  # noqa: E402
-from penetration.fe.shot import run_shot  # noqa: E402
 from penetration.fe.level import estimate_cost  # noqa: E402
+from penetration.fe.shot import run_shot  # noqa: E402
 from penetration.nose.geometry import Ogive  # noqa: E402
+from penetration.pipeline.config import cpu_model  # noqa: E402
+from penetration.shots import ladder as L  # noqa: E402
 from penetration.shots.records import context_from_pipeline  # noqa: E402
 
 SHOTS = {

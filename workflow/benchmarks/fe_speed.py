@@ -32,15 +32,15 @@ from pathlib import Path
 
 import numba
 import numpy as np
+from nstar_speed import machine
 from numba import njit, prange
 
-from nstar_speed import machine
+from penetration.concrete.hjc import HJC, strength
 from penetration.fe import state as fe_state
 from penetration.fe.element_pass import element_pass
 from penetration.fe.mesh import MeshSpec, build
 from penetration.fe.model import Controls, Model
 from penetration.fe.nodes import move as move_nodes, node_pass
-from penetration.concrete.hjc import HJC, strength
 
 DO1 = "results/fe/full/do1/double_ogive_835.json"
 
@@ -313,6 +313,7 @@ def main():
         from penetration.fe import shot as fe_shot
         from penetration.fe.shot import RunSpec, Settings, run_shot
         from penetration.pipeline.io import read_inference
+
         # the pipeline's DO1 shot (its element size, calibrated failure strain and mesh extent)
         ref = json.loads(Path(DO1).read_text())
         nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]

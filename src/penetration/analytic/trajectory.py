@@ -29,6 +29,7 @@ from ..errors import ParameterError
 from ..nose.nstar import cumulative_nstar
 from .resistance import NoseSurface, Target, crater_coefficient, forrestal_stress, nose_force, nose_surface
 
+
 @dataclass(frozen=True)
 class Wetted:
     """Projected area and a^2 N* of the part of the nose with x <= z."""

@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from ..concrete.hjc import (HJC, I_DAMAGE, I_G, I_HOOP, I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_T, eos, fracture_strain, unloading_modulus, yield_stress)
+from ..concrete.hjc import (HJC, I_DAMAGE, I_G, I_HOOP, I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_T, eos, fracture_strain,
+                            unloading_modulus, yield_stress)
 
 ELASTIC, EPP, MOHR_COULOMB, HJC_KIND = 0, 1, 2, 3
 

@@ -24,11 +24,10 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
-from .expansion import Controls, Mesh, stress_table
+from ..analytic.trajectory import assemble, integrate
 from ..concrete.hjc import HJC
 from ..nose.nstar import nstar
-from ..analytic.trajectory import assemble, integrate
-
+from .expansion import Controls, Mesh, stress_table
 
 INTERPOLATIONS = ("pchip_v2", "linear_v")
 

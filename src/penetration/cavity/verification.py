@@ -11,11 +11,11 @@ import math
 
 import numpy as np
 
+from ..checks import below, near, run_all
+from ..concrete.hjc import HJC
 from .expansion import Controls, Mesh, Simple, expand, single_expansion
 from .level import quasi_static_stress
 from .oracles import epp_wall_stress, hill_static_pressure, mohr_coulomb_wall_stress
-from ..checks import below, near, run_all
-from ..concrete.hjc import HJC
 
 # the concrete-like elastic constants of the oracle comparisons (Table 1's density, bulk and shear moduli)
 RHO, K, G, Y = 2440.0, 16e9, 14.86e9, 100e6

@@ -38,9 +38,9 @@ import dataclasses
 import math
 
 from ..errors import ParameterError
-from .hjc import HJC, LOCKS, TENSIONS, from_table1
-from .effects import MATERIAL_EFFECTS
 from ..units import MPA
+from .effects import MATERIAL_EFFECTS
+from .hjc import HJC, LOCKS, TENSIONS, from_table1
 
 # the configuration's conventions (the ``concrete`` section) and what each admits
 CONVENTIONS = ("lock", "tension", "rate_floor")

@@ -18,8 +18,8 @@ import math
 
 from scipy.optimize import brentq
 
-from .material import tensile_strength_mc2010
 from ..units import MPA
+from .material import tensile_strength_mc2010
 
 ATTARD_SETUNGE_MAX_CONFINEMENT = 20e6   # Pa: the largest confinement of the tests behind the fit
 

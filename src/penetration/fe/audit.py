@@ -20,7 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_EXTERNAL, A_HOURGLASS, A_STEPS, B_ACTIVE, B_MASS, B_TIP, B_VELOCITY, CRITERIA, LIVE)
+from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_EXTERNAL, A_HOURGLASS, A_STEPS, B_ACTIVE,
+                    B_MASS, B_TIP, B_VELOCITY, CRITERIA, LIVE)
 
 
 class Audit:

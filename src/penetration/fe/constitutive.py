@@ -18,9 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..errors import ParameterError
 from ..concrete.hjc import HJC, deviatoric_trial, longitudinal_modulus as hjc_modulus, update_voigt
-from .state import DMG, EPSP, MUMAX, MUP, P, SRR, SRZ, STT, SZZ, Material
+from ..errors import ParameterError
+from .state import DMG, EPSP, MUMAX, MUP, SRR, SRZ, STT, SZZ, Material, P
 
 ELASTIC, VON_MISES, HJC_KIND = 0, 1, 2
 Q_RHO, Q_G, Q_K, Q_YIELD, Q_HARDENING = range(5)

@@ -27,7 +27,11 @@ from ..concrete.hjc import I_HOOP, power_chords, quick_update
 from .constitutive import HJC_KIND, longitudinal_modulus, update, wave_speed
 from .element import corners, energy_increment, equivalent_rate, length, moment, rates, rotate, row_forces, sound_shape
 from .erosion import erodes
-from .state import (BAD_SHAPE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, CHECK, DONE, DT_COLLAPSE, DMG, EPSEFF, EPSP, ERODING, FAST, IE, INVERTED, LIVE, MUMAX, N_SCRATCH, NON_FINITE, P, QV, ROWS_PER_CHUNK, S_C, S_DRR, S_DRZ, S_DT, S_DTT, S_DZZ, S_LC, S_MU, S_R0, S_R1, S_R3, S_RATE, S_STATE, S_TV, S_VH, SCALAR, SKIP, SRR, SRZ, STT, SZZ, TWO_PI, V0, RF_DT, RF_ERO, RF_HG, RI_ARG, RI_CODE, RI_CRIT, RI_FAIL, VR, VZ)
+from .state import (BAD_SHAPE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, CHECK, DMG, DONE,
+                    DT_COLLAPSE, EPSEFF, EPSP, ERODING, FAST, IE, INVERTED, LIVE, MUMAX, N_SCRATCH, NON_FINITE, QV,
+                    RF_DT, RF_ERO, RF_HG, RI_ARG, RI_CODE, RI_CRIT, RI_FAIL, ROWS_PER_CHUNK, S_C, S_DRR, S_DRZ, S_DT,
+                    S_DTT, S_DZZ, S_LC, S_MU, S_R0, S_R1, S_R3, S_RATE, S_STATE, S_TV, S_VH, SCALAR, SKIP, SRR, SRZ,
+                    STT, SZZ, TWO_PI, V0, VR, VZ, P)
 from .timestep import NO_STEP, criterion, row_step, stable_step, viscosity
 
 N_HJC = I_HOOP + 1  # length of an HJC parameter array

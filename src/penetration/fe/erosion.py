@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .state import (ACTIVE, DAMAGE, EFFECTIVE_STRAIN, EJECTED, ERODED, ERODING, FREE, IE, MASS, PLASTIC_STRAIN, VOLUMETRIC_TENSION)
+from .state import (ACTIVE, DAMAGE, EFFECTIVE_STRAIN, EJECTED, ERODED, ERODING, FREE, IE, MASS, PLASTIC_STRAIN,
+                    VOLUMETRIC_TENSION)
 
 
 class InsideTarget(RuntimeError):

@@ -224,9 +224,10 @@ def estimate_cost(spec: RunSpec, max_seconds=math.inf, probe_time=4e-5, availabl
     are the moving window's rows at mid-depth. Without the probe (``max_seconds`` already exceeded at 5 ns per
     element-step, an optimistic bound) the estimate is returned unmeasured."""
     import time
+
+    from .contact import Projectile
     from .mesh import node_lines
     from .shot import body_outline, mesh_spec, model_for
-    from .contact import Projectile
     from .solver import run
     nose, settings, target, material = spec.nose, spec.settings, spec.target, spec.material
     expected_depth, velocity = spec.expected_depth, spec.velocity

@@ -19,7 +19,9 @@ from .contact import Projectile
 from .mesh import Grid
 from .rezone import R_COUNT, R_ENERGY, R_MOMENTUM
 from .spec import Controls
-from .state import (ACTIVE, FREE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, DROPPED, EROSION_KINDS, FIX_R, FIX_Z, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Boundary, Body, Loads, Nodes, Rows, Span)
+from .state import (ACTIVE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, DROPPED,
+                    EROSION_KINDS, FIX_R, FIX_Z, FREE, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Body, Boundary, Loads,
+                    Nodes, Rows, Span)
 
 
 def _edges(r, z):

@@ -33,7 +33,8 @@ import numpy as np
 from numba import njit
 
 from .element import area2, corner_jacobians, length as element_length, moment
-from .state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, P, QV, SRR, SRZ, STT, SZZ, TWO_PI, V0, VR, VZ)
+from .state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, QV, SRR, SRZ, STT, SZZ, TWO_PI, V0,
+                    VR, VZ, P)
 
 # the element fields carried per unit mass (IE is carried as specific energy, MASS is the conserved quantity)
 CARRIED = np.array([SRR, SZZ, STT, SRZ, P, QV, MUMAX, MUP, DMG, EPSP, EPSEFF], np.int64)

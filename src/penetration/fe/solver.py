@@ -29,7 +29,10 @@ from .element_pass import element_pass
 from .erosion import InsideTarget
 from .model import Model, body_of
 from .nodes import external, guide, move, node_pass
-from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_HOURGLASS, A_STEPS, AT_REST, B_ACTIVE, B_EXIT, B_REST_VELOCITY, B_STOP_AT_REST, B_TIP, B_VELOCITY, C_DT, EROSION, FAILED, FAILURES, H_CONTACTS, H_DEPTH, H_FORCE, H_MAX_FORCE, H_T, H_VELOCITY, HISTORY, HISTORY_FULL, INITIAL, N_ACC, N_BODY, PAUSED, PERFORATED, REACHED, RF_ERO, RF_HG, RF_IMPULSE, RF_POWER, RI_FAIL, Record)
+from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_HOURGLASS, A_STEPS, AT_REST, B_ACTIVE,
+                    B_EXIT, B_REST_VELOCITY, B_STOP_AT_REST, B_TIP, B_VELOCITY, C_DT, EROSION, FAILED, FAILURES,
+                    H_CONTACTS, H_DEPTH, H_FORCE, H_MAX_FORCE, H_T, H_VELOCITY, HISTORY, HISTORY_FULL, INITIAL, N_ACC,
+                    N_BODY, PAUSED, PERFORATED, REACHED, RF_ERO, RF_HG, RF_IMPULSE, RF_POWER, RI_FAIL, Record)
 from .timestep import next_step
 
 LOG = logging.getLogger("penetration.fe")

@@ -8,13 +8,12 @@ from __future__ import annotations
 
 import math
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import matplotlib.pyplot as plt
 
-from ..pipeline.io import committed_study, load_json, task, write_csv
 from ..paper.reference import TABLE3_NOSES, UNITS, load_reference
-
+from ..pipeline.io import committed_study, load_json, task, write_csv
 from .common import PAPER_STYLE, color, do1_histories, figure, save
 
 G0 = UNITS["g"]

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..pipeline.io import task, write_csv
 from ..paper.reference import load_reference
+from ..pipeline.io import task, write_csv
 from ..units import G0
 from .common import color, ending_at_rest, figure, save
 

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..pipeline.io import committed_study, task, write_csv
 from ..paper.reference import load_reference
+from ..pipeline.io import committed_study, task, write_csv
 from .common import PAPER_STYLE, figure, save
 
 PANELS = ("DO/CRH 4.5", "DO/CRH 3", "CRH 4.5/CRH 3")

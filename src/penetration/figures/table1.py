@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..pipeline.io import task, write_csv
 from ..paper.reference import load_reference
+from ..pipeline.io import task, write_csv
 
 
 def transcription(refs, item):

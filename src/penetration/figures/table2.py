@@ -1,8 +1,8 @@
 """Table 2: the DO1 experiment as the paper states it, beside its SI form."""
 from __future__ import annotations
 
-from ..pipeline.io import task, write_csv
 from ..paper.reference import load_reference
+from ..pipeline.io import task, write_csv
 from .table1 import transcription
 
 

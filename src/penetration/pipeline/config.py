@@ -290,7 +290,7 @@ def fe_mesh_elements(h, fe, radius, depth) -> int:
 
 
 def _fe_settings(fe, h):
-    from ..fe.spec import Settings   # light: no solver code
+    from ..fe.spec import Settings  # light: no solver code
     return Settings.from_config(fe, None, h)
 
 

@@ -22,11 +22,11 @@ from pathlib import Path
 
 import numpy as np
 
-from . import config
-from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
-from ..concrete.effects import MATERIAL_EFFECTS
 from ..analytic.resistance import Target, strength_factor
 from ..analytic.trajectory import EFFECTS, EXCLUDES
+from ..concrete.effects import MATERIAL_EFFECTS
+from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
+from . import config
 
 MAX_VELOCITIES = 1000
 # Effects of the finite-element level beyond the material's (fe.erosion_strain sets the criterion's value).

@@ -14,9 +14,9 @@ import math
 from dataclasses import dataclass
 
 from ..analytic.dop import penetration_depth
+from ..analytic.resistance import Target, strength_factor
 from ..nose.geometry import Flat, Ogive
 from ..nose.nstar import nstar
-from ..analytic.resistance import Target, strength_factor
 from ..units import MPA, NUMBER_FORM, parse_number
 
 

@@ -32,18 +32,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..analytic.dop import penetration_depth
+from ..analytic.resistance import STRENGTH_LAWS, Target, crater_coefficient, crater_velocity_squared, strength_factor
+from ..analytic.trajectory import assemble, integrate
 from ..cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
+from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
-from ..analytic.dop import penetration_depth
 from ..errors import ParameterError
 from ..nose.geometry import NOSES, Flat, Ogive, make_nose
-from ..concrete.hjc import HJC
 from ..nose.nstar import nstar
-from ..analytic.resistance import STRENGTH_LAWS, Target, crater_coefficient, crater_velocity_squared, strength_factor
-from .fields import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, expected_depth, field_value, row_problem, shot_nstar, shot_values)
-from .fields import output_fields as shots_output_fields, predict_rows as shots_predict_rows
-from ..analytic.trajectory import assemble, integrate
+from .fields import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, expected_depth, field_value,
+                     output_fields as shots_output_fields, predict_rows as shots_predict_rows, row_problem, shot_nstar,
+                     shot_values)
 
 LEVELS = ("analytic", "trajectory", "cavity", "fe")
 TRAJECTORY_EFFECTS = ("crater", "static", "inertial")
@@ -256,8 +257,8 @@ def _fe(shot, ctx, log=None):
     """The fe level: its cost is estimated first (fe_level.estimate_cost, told to ``log``), and a shot estimated to
     cost more than ctx.fe_max_seconds is refused before it runs (no estimate, which probes the kernels for about a
     second, when there is neither a limit nor a log to tell it to)."""
-    from ..fe.shot import progress_to, run_shot
     from ..fe.level import estimate_cost
+    from ..fe.shot import progress_to, run_shot
     spec, _ = fe_spec(shot, ctx)
     settings = spec.settings
     est = None

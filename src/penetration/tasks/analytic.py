@@ -6,15 +6,16 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
-from ..paper import reference
-from ..analytic.fits import (calibrate_strength, cell_strength, fit_nstar_and_strength, fit_strength, infer_diameter, resistance_shares as shares)
+from ..analytic.fits import (calibrate_strength, cell_strength, fit_nstar_and_strength, fit_strength, infer_diameter,
+                             resistance_shares as shares)
+from ..analytic.resistance import Target, strength_factor
 from ..figures.validation import validation_eq9_figure
 from ..nose.geometry import Ogive
-from ..pipeline.io import load_json, read_rows, task, write_csv, write_json, write_rows
-from ..studies.laboratory import errors_summary
 from ..nose.nstar import nstar
-from ..analytic.resistance import Target, strength_factor
+from ..paper import reference
+from ..pipeline.io import load_json, read_rows, task, write_csv, write_json, write_rows
 from ..shots.fields import output_fields, predict_rows
+from ..studies.laboratory import errors_summary
 from .common import PLAIN, scene_from_inputs
 
 

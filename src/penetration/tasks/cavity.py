@@ -7,14 +7,14 @@ import time
 import numpy as np
 import pandas as pd
 
-from ..concrete import material as concrete
-from ..paper import reference
-from ..cavity.level import SigmaTable, calibrate_parameter, cavity_settings, cavity_trajectory, sigma_table
-from ..concrete.hjc import LOCKS, PointState, drive
-from ..concrete.effects import MATERIAL_EFFECTS
-from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
-from ..nose.nstar import nstar
 from ..analytic.resistance import nose_surface
+from ..cavity.level import SigmaTable, calibrate_parameter, cavity_settings, cavity_trajectory, sigma_table
+from ..concrete import material as concrete
+from ..concrete.effects import MATERIAL_EFFECTS
+from ..concrete.hjc import LOCKS, PointState, drive
+from ..nose.nstar import nstar
+from ..paper import reference
+from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
 from .common import CAVITY, calibration_row, do1_shot, projectile, scene_from_inputs
 
 

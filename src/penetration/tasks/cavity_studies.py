@@ -7,14 +7,15 @@ import time
 import numpy as np
 import pandas as pd
 
-from ..concrete import material as concrete
-from ..paper import reference
-from ..cavity.expansion import Controls, Mesh, expand
-from ..cavity.level import (INTERPOLATIONS, calibrate_parameter, cavity_settings, cavity_trajectory, quasi_static_stress, sigma_table)
-from ..nose.geometry import DoubleOgive
-from ..concrete.effects import MATERIAL_EFFECTS
-from ..pipeline.io import load_json, read_inference, task, write_csv
 from ..analytic.resistance import nose_surface
+from ..cavity.expansion import Controls, Mesh, expand
+from ..cavity.level import (INTERPOLATIONS, calibrate_parameter, cavity_settings, cavity_trajectory,
+                            quasi_static_stress, sigma_table)
+from ..concrete import material as concrete
+from ..concrete.effects import MATERIAL_EFFECTS
+from ..nose.geometry import DoubleOgive
+from ..paper import reference
+from ..pipeline.io import load_json, read_inference, task, write_csv
 from .cavity import calibrated_context, read_sigma_table
 from .common import CAVITY, do1_shot, scene_from_inputs
 

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..pipeline.io import task, write_csv
-from ..nose.nstar import nstar
 from ..analytic.trajectory import assemble, integrate
+from ..nose.nstar import nstar
+from ..pipeline.io import task, write_csv
 from .common import PLAIN, scene_from_inputs
 
 # (name, numerator nose, denominator nose): the paper's claims and the CRH contrast

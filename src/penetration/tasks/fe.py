@@ -17,12 +17,12 @@ import numpy as np
 import pandas as pd
 
 from ..concrete import material as concrete
-from ..paper import reference
 from ..fe import state as fe_state
+from ..fe.level import calibrate_failure_strain, calibrate_strength_scale, domain_of, scene_settings, scene_spec
 from ..fe.mesh import MeshSpec, body_outline, build
 from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
 from ..fe.solver import Unstable
-from ..fe.level import calibrate_failure_strain, calibrate_strength_scale, domain_of, scene_settings, scene_spec
+from ..paper import reference
 from ..pipeline.dispatch import code_closure
 from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
 from ..shots.fields import expected_depth

@@ -8,11 +8,11 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..figures.fe_convergence import grid_convergence_figure
+from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
+from ..pipeline.io import load_json, task, write_csv, write_json
 from ..studies import grid as grid_study
 from ..studies.mesh_convergence import grid_refinement
-from ..figures.fe_convergence import grid_convergence_figure
-from ..pipeline.io import load_json, task, write_csv, write_json
-from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
 from .common import calibration_row
 
 

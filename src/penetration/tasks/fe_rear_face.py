@@ -12,10 +12,10 @@ import math
 
 import pandas as pd
 
-from ..studies import fe_results as fe_studies
 from ..fe.shot import TargetSpec
 from ..figures.fe_rear_face import rear_face_figure
 from ..pipeline.io import load_json, task, write_csv
+from ..studies import fe_results as fe_studies
 
 
 def _target(s):

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import pandas as pd
 
-from ..studies import fe_results as fe_studies
 from ..figures.fe_convergence import contrast_extrapolation_figure
-from ..figures.fe_level import (contrast_band_figure, contrast_convergence_figure, contrast_ensemble_figure, mesh_study_figure)
+from ..figures.fe_level import (contrast_band_figure, contrast_convergence_figure, contrast_ensemble_figure,
+                                mesh_study_figure)
 from ..pipeline.io import load_json, task, write_csv
+from ..studies import fe_results as fe_studies
 
 CONTRASTS = list(fe_studies.CONTRASTS)
 

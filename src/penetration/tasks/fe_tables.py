@@ -6,15 +6,14 @@ and ``penetration.paper.diff``, and writes under figures/fe/{profile}/.
 """
 from __future__ import annotations
 
-
 import pandas as pd
 
-from ..paper import diff as D
-from ..studies import fe_results as fe_studies
 from ..figures.fe_level import contrasts_figure, shots_frame
-from ..pipeline.io import committed_study, load_json, task, write_csv, write_json, write_text
+from ..paper import diff as D
 from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
+from ..pipeline.io import committed_study, load_json, task, write_csv, write_json, write_text
 from ..pipeline.scenes import scene_data
+from ..studies import fe_results as fe_studies
 
 
 def _paper_table3(refs):

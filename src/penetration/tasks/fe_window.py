@@ -21,10 +21,10 @@ from types import SimpleNamespace
 
 import pandas as pd
 
-from ..fe.spec import Settings
 from ..fe.level import DOMAINS
-from ..studies.fe_results import window_summary
+from ..fe.spec import Settings
 from ..pipeline.io import task, write_csv
+from ..studies.fe_results import window_summary
 from .fe import scene_shot
 
 

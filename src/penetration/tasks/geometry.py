@@ -7,10 +7,10 @@ import numpy as np
 import pandas as pd
 
 from ..nose import inference
-from ..paper import reference
 from ..nose.geometry import Cone, MinimumNstar, Ogive
-from ..pipeline.io import nose_record, read_inference, task, write_csv, write_json
 from ..nose.nstar import cumulative_nstar, nstar, shape_rate
+from ..paper import reference
+from ..pipeline.io import nose_record, read_inference, task, write_csv, write_json
 from .common import projectile
 
 

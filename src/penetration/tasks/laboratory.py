@@ -11,8 +11,8 @@ import pandas as pd
 from ..paper import reference
 from ..pipeline.config import machine_name
 from ..pipeline.io import read_inference, read_rows, task, write_csv
-from ..studies.laboratory import Protocol, errors_summary, fit_factor, interpolated_depths
 from ..shots.ladder import UserShot, run, user_shot
+from ..studies.laboratory import Protocol, errors_summary, fit_factor, interpolated_depths
 from .common import do1_shot
 from .levels import context_from_files
 

@@ -8,20 +8,20 @@ import time
 import numpy as np
 import pandas as pd
 
-from ..concrete import material as concrete, triaxial
-from ..studies import laboratory
-from ..paper import reference
-from ..cavity.level import cavity_settings, cavity_trajectory, sigma_table
-from ..pipeline.config import machine_name
 from ..analytic.dop import penetration_depth
+from ..analytic.resistance import Target
+from ..cavity.level import cavity_settings, cavity_trajectory, sigma_table
+from ..concrete import material as concrete, triaxial
 from ..figures.hjc_scaling import hjc_scaling_figure
 from ..figures.validation_levels import KEYS, validation_figure
 from ..nose.geometry import make_nose
+from ..nose.nstar import nstar
+from ..paper import reference
+from ..pipeline.config import machine_name
 from ..pipeline.io import load_json, read_inference, read_rows, task, write_csv, write_rows
 from ..shots.ladder import UserShot, output_fields, predict_rows, run
 from ..shots.records import context_from_files
-from ..nose.nstar import nstar
-from ..analytic.resistance import Target
+from ..studies import laboratory
 
 
 def _optional(inputs, name):

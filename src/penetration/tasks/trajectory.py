@@ -8,10 +8,10 @@ import numpy as np
 import pandas as pd
 
 from ..analytic.dop import penetration_depth
-from ..nose.geometry import with_radius
-from ..pipeline.io import load_json, task, write_csv
-from ..nose.nstar import nstar
 from ..analytic.trajectory import assemble, integrate
+from ..nose.geometry import with_radius
+from ..nose.nstar import nstar
+from ..pipeline.io import load_json, task, write_csv
 from .common import PLAIN, scene_from_inputs
 
 

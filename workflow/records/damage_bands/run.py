@@ -23,14 +23,13 @@ import numpy as np
 import pandas as pd
 import yaml
 
-from penetration.paper import reference
-from penetration.fe import state as fe_state
-from penetration.fe.shot import RunSpec, TargetSpec, run_shot
-from penetration.shots.fields import expected_depth
-from penetration.pipeline.io import load_json
 from penetration.concrete import material as concrete
+from penetration.fe import state as fe_state
+from penetration.fe.shot import RunSpec, Settings, TargetSpec, run_shot
+from penetration.paper import reference
+from penetration.pipeline.io import load_json
+from penetration.shots.fields import expected_depth
 from penetration.tasks.common import scene_from_inputs
-from penetration.fe.shot import Settings
 
 HERE = Path(__file__).parent
 cfg = yaml.safe_load(open("workflow/config.yaml"))

@@ -18,13 +18,12 @@ from types import SimpleNamespace
 
 import yaml
 
-from penetration.paper import reference
-from penetration.fe.shot import RunSpec, TargetSpec, run_shot
-from penetration.shots.fields import expected_depth
-from penetration.pipeline.io import load_json
 from penetration.concrete import material as concrete
+from penetration.fe.shot import RunSpec, Settings, TargetSpec, run_shot
+from penetration.paper import reference
+from penetration.pipeline.io import load_json
+from penetration.shots.fields import expected_depth
 from penetration.tasks.common import scene_from_inputs
-from penetration.fe.shot import Settings
 
 cfg = yaml.safe_load(open("workflow/config.yaml"))
 nose_name, v, across = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])

@@ -2,25 +2,23 @@
 Coulomb friction, momentum exchange); the non-reflecting boundary; HJC in one element; erosion's energy."""
 from __future__ import annotations
 
-
 import math
 
 import numpy as np
 
-
 from ...checks import Check, below as _below, near as _near
-from ...nose.geometry import Flat, Ogive
 from ...concrete.hjc import HJC
-from . import chain_reference, closed_forms as cf
+from ...nose.geometry import Flat, Ogive
 from .. import state as fe_state
-from .hjc_reference import homogeneous_path
 from ..constitutive import Elastic
 from ..contact import Projectile
 from ..mesh import Grid, MeshSpec, body_outline, build
-from .setups import element_path, noh_cylinder_run, pulse_column
 from ..model import Controls, Model
 from ..solver import run
+from . import chain_reference, closed_forms as cf
 from .common import _richardson, problems
+from .hjc_reference import homogeneous_path
+from .setups import element_path, noh_cylinder_run, pulse_column
 
 PROBLEMS, problem = problems()
 

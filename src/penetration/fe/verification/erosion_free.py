@@ -9,9 +9,9 @@ import numpy as np
 
 from ...checks import Check, below as _below
 from ...concrete.hjc import HJC
-from .quasi_static import driven_ogive
 from ..solver import run
 from .common import problems
+from .quasi_static import driven_ogive
 
 PROBLEMS, problem = problems()
 

@@ -2,26 +2,25 @@
 plasticity (Taylor's bar, Verney's shells); the formulation (patch test, rigid motion, the penetration audit)."""
 from __future__ import annotations
 
-
 import math
 
 import numpy as np
 
 from ...cavity import expansion as cavity
 from ...checks import Check, below as _below, near as _near
-from ...nose.geometry import Ogive
 from ...concrete.hjc import HJC
-from . import chain_reference, closed_forms as cf
+from ...nose.geometry import Ogive
 from .. import state as fe_state
-from .cavity_reference import wall_stress
 from ..constitutive import Elastic, VonMises
 from ..contact import Projectile
 from ..mesh import Grid, MeshSpec, body_outline, build, polar
-from ..rezone import R_MOVED
-from .setups import bar_on_face, distorted_grid, elastic, element_pass, nodal_forces, taylor_run
 from ..model import Controls, Model
+from ..rezone import R_MOVED
 from ..solver import run
+from . import chain_reference, closed_forms as cf
+from .cavity_reference import wall_stress
 from .common import _energy, _richardson, _stress, problems
+from .setups import bar_on_face, distorted_grid, elastic, element_pass, nodal_forces, taylor_run
 
 PROBLEMS, problem = problems()
 

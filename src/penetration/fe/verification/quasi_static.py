@@ -15,8 +15,8 @@ import time
 
 import numpy as np
 
-from ...nose.geometry import Ogive
 from ...concrete.hjc import HJC
+from ...nose.geometry import Ogive
 from ..contact import Projectile
 from ..mesh import MeshSpec, body_outline, build
 from ..model import Controls, Model

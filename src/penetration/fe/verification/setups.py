@@ -8,15 +8,15 @@ import math
 import numpy as np
 
 from ...nose.geometry import Flat
-from . import closed_forms as cf
 from .. import state as fe_state
-from ..gas import run_ideal_gas, volumes_and_density
 from ..constitutive import Elastic, VonMises
 from ..contact import Projectile
+from ..gas import run_ideal_gas, volumes_and_density
 from ..mesh import Grid, body_outline
 from ..model import Controls, Model
 from ..nodes import node_pass
 from ..solver import run
+from . import closed_forms as cf
 
 
 def elastic(rho, K, G):
