@@ -12,12 +12,15 @@ import pytest
 PKG = Path(__file__).resolve().parents[1] / "src/penetration"
 # the layers, in the direction of imports: an entry imports only entries before it
 LAYERS = ["errors", "units", "checks",      # the ground floor: error types, unit constants, a verification check
+          "levels",     # the ladder of fidelity: the one list of its levels
+          "studies",    # statistics and pure functions of result tables: intervals, regressions, Richardson and the
+                        # GCI, mesh convergence, the grid study, the laboratory protocol (no physics: every level's
+                        # verification and study may use them)
           "nose",       # geometry of the noses, N* (Eq 5), inference of the paper's unstated noses
           "analytic",   # resistance (Eqs 1-8, 11), the closed-form DOP (Eq 9), its fits, the rigid trajectory
           "concrete",   # HJC (Eqs 12-18), its effects, the target's material as a scene or shot states it
           "cavity",     # the cavity-expansion level, its oracles and verification
           "fe",         # the finite-element level, its verification problems
-          "studies",    # pure functions of result tables: mesh convergence, the grid study, laboratory protocol
           "paper",      # the paper's reference values and the diff against them
           "pipeline",   # config, scenes, file I/O, the Snakefile's dispatch, numba caches, the docs' numbers
           "shots",      # a user's shot: its fields, the ladder of levels, how far to trust an answer, the committed
@@ -25,9 +28,9 @@ LAYERS = ["errors", "units", "checks",      # the ground floor: error types, uni
           "figures",    # one module per figure or table: read results and draw
           "tasks",      # the pipeline's I/O layer, one module per stage
           "warmup", "build", "cli", "__main__"]  # entry points
-FOLDERS = ["nose", "analytic", "concrete", "cavity", "fe", "studies", "paper", "pipeline", "shots", "figures", "tasks"]
+FOLDERS = ["studies", "nose", "analytic", "concrete", "cavity", "fe", "paper", "pipeline", "shots", "figures", "tasks"]
 # pure: no file I/O, plotting or printing
-PHYSICS = ["errors", "units", "checks", "nose", "analytic", "concrete", "cavity", "fe", "shots.fields", "shots.ladder",
+PHYSICS = ["errors", "units", "checks", "levels", "nose", "analytic", "concrete", "cavity", "fe", "shots.fields", "shots.ladder",
            "shots.trust"]
 # pure functions on result tables (frames in, frames out): no file I/O, plotting or printing
 TABLES = ["studies"]
@@ -193,8 +196,8 @@ def test_closed_form_and_simulation_levels_are_independent(level):
 
 
 def test_figures_read_results_only():
-    """Figure modules import the I/O module, the reference table and the unit constants, never a task, study or
-    physics module, nor statistics."""
+    """Figure modules import the I/O module, the reference table, the unit constants and the list of levels, never a
+    task, study or physics module, nor statistics."""
     assert {m for m in dotted_imports("figures") if not m.startswith("figures")} <= {
-        "pipeline.io", "paper.reference", "units"}
+        "pipeline.io", "paper.reference", "units", "levels"}
     assert "scipy" not in imports("figures")

@@ -88,7 +88,7 @@ _validation = _validation[_validation.primary.astype(bool)]
 _laboratory = set(_validation.level[_validation.calibration == "laboratory"])   # as laboratory.users_rows
 validation = _validation[(_validation.calibration == "laboratory") | ~_validation.level.isin(_laboratory)].set_index("level")
 cavity_do1 = _validation[(_validation.level == "cavity") & (_validation.calibration == "do1")].iloc[0]
-LEVELS = {"analytic": "Eq 9", "trajectory": "trajectory", "cavity": "cavity", "fe": "finite elements"}
+LEVELS = json.loads(os.environ["PENETRATION_LEVELS"])  # level -> its label, the ladder in order (levels.LABELS)
 LEAST_GAIN = {"DO/CRH 4.5": "text.gain_pct_crh45", "DO/CRH 3": "text.gain_pct_crh3"}  # claimed least gains (%)
 GAIN_1200 = {"DO/CRH 4.5": "text.gain_1200_crh45", "DO/CRH 3": "text.gain_1200_crh3"}  # claimed gains (m)
 V_GAIN = int(PAPER_VALUE.case["text.gain_1200_crh45"])

@@ -17,6 +17,7 @@ import time
 from pathlib import Path
 
 from .errors import ParameterError
+from .levels import LEVELS
 from .nose.geometry import NOSES, make_nose
 from .nose.nstar import nstar
 from .pipeline.config import ConfigError
@@ -39,7 +40,7 @@ SHOT_NOSE_HELP = {
     "minimum_nstar": "length=m (the nose's)",
     "table": "path=FILE.csv (columns x,y in metres; the last y is the shank radius, diameter_m may be left out)",
 }
-LEVEL_CHOICES = ["analytic", "trajectory", "cavity", "fe"]
+LEVEL_CHOICES = list(LEVELS)
 LEVELS_EPILOG = (
     "levels: analytic (Eq 9 and its closed-form time and peak deceleration; ns-us per shot), trajectory (rigid-body "
     "ODE, crater + static + inertial; ms), cavity (HJC sigma_n(v) table of the shot's concrete driving the "

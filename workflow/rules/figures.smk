@@ -292,7 +292,7 @@ rule sweep_level:
            cal_cavity="results/calibration/cavity_do1.json", cal_fe=fe_calibration(SWEEP.get("fe_profile", "ci")),
     output: csv="results/sweep/{level}_n{n}.csv",
     params: cfg=cfg_slice("concrete", "cavity", "validation", "fe", "sweep"), level=lambda w: w.level, n=lambda w: w.n,
-    wildcard_constraints: level="analytic|trajectory|cavity|fe", n=r"[0-9]+",
+    wildcard_constraints: level="|".join(LEVELS), n=r"[0-9]+",
     threads: 2
     resources: mem_mb=2000, runtime=60
     benchmark: "results/benchmarks/sweep_level_{level}_n{n}.tsv"

@@ -4,10 +4,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..levels import LEVELS
 from ..pipeline.io import task, write_csv
 from .common import figure, save
 
-LEVELS = ("analytic", "trajectory", "cavity", "fe")
 STYLE = {"analytic": ("-", None), "trajectory": (":", None), "cavity": ("--", None), "fe": ("none", "D")}
 
 

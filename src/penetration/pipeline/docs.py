@@ -14,14 +14,14 @@ import collections
 import csv
 import io
 import json
-import math
 import re
 import statistics
 import sys
 from pathlib import Path
 
+from ..studies.stats import power_law_exponent
+
 BLOCK = re.compile(r"(<!-- generated: (?P<name>[a-z0-9_]+) -->\n)(?P<body>.*?)(<!-- end generated -->)", re.S)
-LEVELS = ("analytic", "trajectory", "cavity", "fe")
 
 
 def _rows(read, path):
@@ -376,7 +376,7 @@ def next_mesh_cost(shots) -> tuple:
     if len(across) < 2:
         raise ValueError(f"elements_across: the cost fit needs shots on at least 2 meshes, got {len(across)}")
     means = [statistics.fmean(float(r["wall_time_s"]) for r in shots if float(r["elements_across"]) == a) for a in across]
-    power = statistics.linear_regression([math.log(a) for a in across], [math.log(m) for m in means]).slope
+    power = power_law_exponent(across, means)
     ratio = across[-1] / across[-2]
     finest = sum(float(r["wall_time_s"]) for r in shots if float(r["elements_across"]) == across[-1])
     return across[-1] * ratio, power, finest * ratio ** power

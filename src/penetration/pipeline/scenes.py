@@ -25,6 +25,7 @@ import numpy as np
 from ..analytic.resistance import Target, strength_factor
 from ..analytic.trajectory import EFFECTS, EXCLUDES
 from ..concrete.effects import MATERIAL_EFFECTS
+from ..levels import WHAT
 from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from . import config
 
@@ -35,13 +36,12 @@ FE_EFFECTS = {"erosion": "element erosion once the equivalent plastic strain rea
 # level is Eq 9, the closed form of exactly crater + static + inertial; a
 # trajectory needs a static term to stop; the cavity level's forces come from
 # its sigma_n table.
-LEVELS = {
-    "analytic": ({"crater", "static", "inertial"}, {"crater", "static", "inertial"}, "Eq 9"),
-    "trajectory": (set(EFFECTS) - {"cavity"}, {"static"}, "the rigid-body trajectory with Eq 7's terms"),
-    "cavity": (set(EFFECTS) - EXCLUDES["cavity"] | set(MATERIAL_EFFECTS), {"cavity"},
-               "the trajectory with the HJC cavity-expansion law"),
-    "fe": (set(FE_EFFECTS) | {"friction"} | set(MATERIAL_EFFECTS), set(), "the axisymmetric finite-element model with HJC"),
-}
+LEVELS = {name: (allowed, required, WHAT[name]) for name, allowed, required in (
+    ("analytic", {"crater", "static", "inertial"}, {"crater", "static", "inertial"}),
+    ("trajectory", set(EFFECTS) - {"cavity"}, {"static"}),
+    ("cavity", set(EFFECTS) - EXCLUDES["cavity"] | set(MATERIAL_EFFECTS), {"cavity"}),
+    ("fe", set(FE_EFFECTS) | {"friction"} | set(MATERIAL_EFFECTS), set()),
+)}
 FE_TARGETS = ("semi_infinite", "block")
 
 

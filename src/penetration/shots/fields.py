@@ -169,22 +169,34 @@ def row_problem(i, row):
     return None
 
 
-def predict_rows(rows, law="li_chen"):
-    """Predicted depths for shot rows: (rows with dop_pred_m added, 'row N: reason' per skipped row).
+def row_predictions(rows, predict, errors=(ShotError,), progress=None, good=None):
+    """Predictions for shot rows: (rows with the columns of ``predict(row)`` added, 'row N: reason' per skipped row).
 
-    Rows are dicts as csv.DictReader yields them: fields beyond the header
-    sit under the key None, missing ones are None; such rows are skipped. N counts the header
-    as row 1, as a spreadsheet does.
+    Rows are dicts as csv.DictReader yields them: fields beyond the header sit under the key None, missing ones are
+    None; such rows are skipped, and so is a row whose prediction raises one of ``errors`` (with its message). N
+    counts the header as row 1, as a spreadsheet does. ``progress(i, n)`` is called after each row; ``good``: a list
+    the predicted rows are appended to as they come (an interrupted run keeps them there).
     """
-    good, problems = [], []
-    for i, row in enumerate(rows, start=2):
+    good = [] if good is None else good
+    problems = []
+    for k, row in enumerate(rows):
+        i = k + 2
+        if progress is not None and k:
+            progress(k, len(rows))
         if (problem := row_problem(i, row)) is not None:
             problems.append(problem)
             continue
         try:
-            dop = predicted_depth(row, law)
-        except ShotError as err:
+            columns = predict(row)
+        except errors as err:
             problems.append(f"row {i}: {err}")
             continue
-        good.append({**row, "dop_pred_m": f"{dop:.6g}"})
+        good.append({**row, **columns})
+    if progress is not None and rows:
+        progress(len(rows), len(rows))
     return good, problems
+
+
+def eq9_columns(law="li_chen"):
+    """The analytic level's prediction of a shot row: dop_pred_m, Eq 9's depth with S from ``law``."""
+    return lambda row: {"dop_pred_m": f"{predicted_depth(row, law):.6g}"}

@@ -40,13 +40,12 @@ from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
 from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
 from ..errors import ParameterError
+from ..levels import LEVELS
 from ..nose.geometry import NOSES, Flat, Ogive, make_nose
 from ..nose.nstar import nstar
-from .fields import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, expected_depth, field_value,
-                     output_fields as shots_output_fields, predict_rows as shots_predict_rows, row_problem, shot_nstar,
-                     shot_values)
+from .fields import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, eq9_columns, expected_depth, field_value,
+                     output_fields as shots_output_fields, row_predictions, shot_nstar, shot_values)
 
-LEVELS = ("analytic", "trajectory", "cavity", "fe")
 TRAJECTORY_EFFECTS = ("crater", "static", "inertial")
 CAVITY_EFFECTS = ("crater", "cavity")
 # Ranges of a user's shot (SI, exclusive low, inclusive high) by UserShot attribute: those of shots.SHOT_FIELDS
@@ -404,32 +403,19 @@ def output_fields(fields, level="analytic"):
 
 def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None, good=None):
     """Predictions for shot rows at any level: (rows with the predicted columns added, 'row N: reason' per skipped
-    row), as shots.predict_rows for the analytic level (dop_pred_m only: Eq 9); the other levels add the time to
+    row), as fields.eq9_columns for the analytic level (dop_pred_m only: Eq 9); the other levels add the time to
     rest, the peak deceleration and the wall time of each shot and need ``ctx``. A run that fails (an unstable
     FE run) skips its row with the reason. ``progress(i, n)`` is called after each row. ``good``: a list the
     predicted rows are appended to as they come (an interrupted run keeps them there).
     """
     if level == "analytic":
-        return shots_predict_rows(rows, law)
-    good = [] if good is None else good
-    problems = []
-    for k, row in enumerate(rows):
-        i = k + 2
-        if progress is not None and k:
-            progress(k, len(rows))
-        if (problem := row_problem(i, row)) is not None:
-            problems.append(problem)
-            continue
-        try:
-            res = run(user_shot(row), level, ctx)
-        except (ShotError, ValueError, RuntimeError) as err:  # RuntimeError: a run that failed (fe.solver.Unstable)
-            problems.append(f"row {i}: {err}")
-            continue
-        good.append({**row, "model": level, "dop_pred_m": f"{res.depth_m:.6g}",
-                     "time_to_rest_pred_s": f"{res.time_to_rest_s:.6g}",
-                     "peak_deceleration_pred_m_s2": f"{res.peak_deceleration_m_s2:.6g}",
-                     "wall_time_s": f"{res.wall_time_s:.4g}"})
-    if progress is not None and rows:
-        progress(len(rows), len(rows))
-    return good, problems
+        return row_predictions(rows, eq9_columns(law))
+
+    def predict(row):
+        res = run(user_shot(row), level, ctx)
+        return {"model": level, "dop_pred_m": f"{res.depth_m:.6g}", "time_to_rest_pred_s": f"{res.time_to_rest_s:.6g}",
+                "peak_deceleration_pred_m_s2": f"{res.peak_deceleration_m_s2:.6g}",
+                "wall_time_s": f"{res.wall_time_s:.4g}"}
+    # RuntimeError: a run that failed (fe.solver.Unstable)
+    return row_predictions(rows, predict, (ShotError, ValueError, RuntimeError), progress, good)
 

@@ -5,8 +5,8 @@ dicts or arrays); outputs are frames and dicts. Nothing here reads or writes a f
 
 - Table 3 at the FE level: each depth against the paper's simulated one (goal: within DEPTH_GOAL), the nose
   contrasts (depth ratios; goal: within CONTRAST_GOAL of the paper's ratio).
-- Intervals: the mean of a sample with Student's t (``t_interval``), the difference of two means with Welch's
-  (``welch``), both at a two-sided confidence.
+- Intervals: the mean of a sample with Student's t, the difference of two means with Welch's (``stats``), both at a
+  two-sided confidence.
 - Ensembles (realisations of the erosion chaos on one mesh) and bands (meshes of nearly one size, each calibrated on
   DO1): mean, spread and interval of each depth and contrast. Their spread is scatter, not discretisation error.
 - Convergence: each contrast against the element size, the limit at h = 0 by ``mesh_convergence.size_regression``.
@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from .mesh_convergence import size_regression
+from .stats import t_interval, welch
 
 MM = 1e-3
 DEPTH_GOAL = 0.05     # |FE depth / paper's simulated depth - 1|
@@ -39,22 +40,6 @@ def depth_within_goal(depth, paper):
 
 def contrast_within_goal(ratio, paper):
     return abs(ratio - paper) <= CONTRAST_GOAL
-
-
-def t_interval(x, confidence):
-    """Student-t interval of the mean of the sample x at a two-sided confidence level (the interval does not depend
-    on the test's popmean; scipy's round-off does, and 1 is the one the committed intervals were made with)."""
-    from scipy import stats
-    lo, hi = stats.ttest_1samp(x, 1.0).confidence_interval(confidence)
-    return float(lo), float(hi)
-
-
-def welch(x, y, confidence):
-    """mean(y) - mean(x) and its Welch interval at the two-sided confidence."""
-    from scipy import stats
-    x, y = np.asarray(x, float), np.asarray(y, float)
-    lo, hi = stats.ttest_ind(y, x, equal_var=False).confidence_interval(confidence)
-    return float(y.mean() - x.mean()), float(lo), float(hi)
 
 
 # ------------------------------------------------------------------------------------------------ Table 3

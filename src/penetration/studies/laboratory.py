@@ -30,6 +30,8 @@ from scipy.interpolate import PchipInterpolator
 from scipy.optimize import minimize_scalar
 
 from ..errors import ParameterError
+from ..levels import LEVELS
+from .stats import slope, within_slope
 
 
 @dataclass(frozen=True)
@@ -149,43 +151,8 @@ def errors_summary(rel):
             "mean_rel_err": float(rel.mean()) if a.size else math.nan, "within_10pct": int((a <= 0.10).sum())}
 
 
-def slope(x, y, confidence=0.90):
-    """Least-squares slope of y on x with its two-sided Student-t interval: (slope, low, high, n)."""
-    from scipy import stats
-    x, y = np.asarray(x, float), np.asarray(y, float)
-    n = x.size
-    if n < 3 or np.ptp(x) == 0:
-        return math.nan, math.nan, math.nan, n
-    r = stats.linregress(x, y)
-    t = stats.t.ppf(0.5 + confidence / 2, n - 2)
-    return float(r.slope), float(r.slope - t * r.stderr), float(r.slope + t * r.stderr), n
-
-
-def within_slope(x, y, groups, confidence=0.90):
-    """The slope of y on x inside groups (a separate intercept per group: x and y demeaned within each group), with
-    its two-sided Student-t interval on n - groups - 1 degrees of freedom: (slope, low, high, n)."""
-    from scipy import stats
-    x, y, groups = np.asarray(x, float), np.asarray(y, float), np.asarray(groups)
-    xd, yd = x.copy(), y.copy()
-    names = np.unique(groups)
-    for g in names:
-        m = groups == g
-        xd[m] -= x[m].mean()
-        yd[m] -= y[m].mean()
-    sxx = float(xd @ xd)
-    dof = x.size - names.size - 1
-    if dof < 1 or sxx == 0:
-        return math.nan, math.nan, math.nan, int(x.size)
-    b = float(xd @ yd) / sxx
-    resid = yd - b * xd
-    se = math.sqrt(float(resid @ resid) / dof / sxx)
-    t = stats.t.ppf(0.5 + confidence / 2, dof)
-    return b, b - t * se, b + t * se, int(x.size)
-
-
 # The validation of every level on the development shots (tasks.levels.validation_levels): per row the level, its
 # calibration, how it is scored and the key of its predictions' columns (rel_err_KEY) in the shots table.
-LEVELS = ("analytic", "trajectory", "cavity", "fe")
 ROWS = [("analytic", "none: S from {law}", "all shots (the S law's authors fitted it on data that include them)",
          "analytic"),
         ("trajectory", "none: S from {law}", "all shots (the S law's authors fitted it on data that include them)",

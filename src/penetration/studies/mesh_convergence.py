@@ -25,6 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .stats import richardson, t_quantile
+
 
 @dataclass(frozen=True)
 class SizeRegression:
@@ -72,7 +74,7 @@ def size_regression(h, f, confidence=0.95):
     dof = h.size - 2
     resid = f - (fit.intercept + fit.slope * h)
     scatter = float(np.sqrt(resid @ resid / dof)) if dof > 0 else float("nan")
-    t = stats.t.ppf(0.5 + confidence / 2, dof)
+    t = t_quantile(confidence, dof)
     se0 = float(fit.intercept_stderr)
     return SizeRegression(n=int(h.size), h_min=float(h.min()), h_max=float(h.max()), f0=float(fit.intercept),
                           f0_low=float(fit.intercept - t * se0), f0_high=float(fit.intercept + t * se0), f0_stderr=se0,
@@ -101,17 +103,6 @@ class GridRefinement:
     safety: float
 
 
-def _triple(f3, f2, f1, r):
-    """Observed order, extrapolation and absolute fine GCI (safety 1) of coarse f3, medium f2, fine f1."""
-    e32, e21 = f3 - f2, f2 - f1
-    if e21 == 0.0 or e32 == 0.0:
-        return float("nan"), f1, 0.0, e32 * e21 >= 0
-    q = e32 / e21
-    p = float(np.log(abs(q)) / np.log(r))
-    gain = r ** p - 1.0
-    return p, f1 + (f1 - f2) / gain if gain != 0 else float("nan"), abs(f1 - f2) / gain if gain > 0 else float("inf"), q > 0
-
-
 def grid_refinement(f, ratio, safety=1.25):
     """Observed order, Richardson extrapolation and grid convergence index of results ``f`` on >= 3 meshes refined by
     a constant ``ratio`` > 1 (coarse first). Status: CONVERGED when the two finest agree exactly; OSCILLATORY when
@@ -123,11 +114,11 @@ def grid_refinement(f, ratio, safety=1.25):
         raise ValueError(f"grid_refinement: {f.size} results; allowed: >= 3 finite values on meshes refined by a constant ratio")
     if not (np.isfinite(ratio) and ratio > 1.0):
         raise ValueError(f"grid_refinement: ratio {ratio}; allowed: > 1 (the constant refinement ratio)")
-    p, ext, gci, monotone = _triple(f[-3], f[-2], f[-1], ratio)
+    p, ext, gci, monotone = richardson(f[-3], f[-2], f[-1], ratio)
     gci *= safety
     order_c, asym = float("nan"), float("nan")
     if f.size >= 4:
-        order_c, _, gci_c, _ = _triple(f[-4], f[-3], f[-2], ratio)
+        order_c, _, gci_c, _ = richardson(f[-4], f[-3], f[-2], ratio)
         gci_c *= safety
         if gci > 0 and np.isfinite(p):
             asym = float(gci_c / (ratio ** p * gci))

@@ -14,7 +14,7 @@ from ..nose.geometry import Ogive
 from ..nose.nstar import nstar
 from ..paper import reference
 from ..pipeline.io import load_json, read_rows, task, write_csv, write_json, write_rows
-from ..shots.fields import output_fields, predict_rows
+from ..shots.fields import eq9_columns, output_fields, row_predictions
 from ..studies.laboratory import errors_summary
 from .common import PLAIN, scene_from_inputs
 
@@ -113,7 +113,7 @@ def resistance_shares(inputs, outputs, params):
 def validation_predictions(inputs, outputs, params):
     """Eq 9 depth of every development shot, S from the configured published law."""
     fields, rows = read_rows(inputs.shots)
-    good, problems = predict_rows(rows, params.law)
+    good, problems = row_predictions(rows, eq9_columns(params.law))
     print(f"predicted {len(good)} shots; skipped {len(problems)}")
     for p in problems:
         print(p)

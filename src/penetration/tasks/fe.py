@@ -31,6 +31,11 @@ from .common import calibration_row, do1_shot, scene_from_inputs
 FE = ("fe",)
 
 
+def trial_sources():
+    """The source files a calibration trial depends on: the FE calibrations' module and every module it runs on."""
+    return code_closure("fe.level")
+
+
 class TrialMemo(dict):
     """The finished trials of a calibration (its parameter ``key``'s value -> its run's record), appended to a JSON-lines file as each ends, so
     that an interrupted calibration resumes where it stopped. The file's name carries a digest of everything a
@@ -40,7 +45,7 @@ class TrialMemo(dict):
     def __init__(self, folder, *definition, key="fs"):
         super().__init__()
         h = hashlib.sha256(repr(definition).encode())
-        for f in code_closure("fe.level"):   # the calibrations' module and every module it runs on
+        for f in trial_sources():
             h.update(f.read_bytes())
         self.path = Path(folder) / f"trials_{h.hexdigest()[:16]}.jsonl"
         if self.path.is_file():

@@ -1,7 +1,7 @@
 """The replication report: workflow/report.py (jupytext percent format) executed and rendered to one HTML file.
 
 Executed in a Python kernel (nbclient; no notebook server) in the pipeline's directory, with the FE mesh
-profile of the build in the environment (PENETRATION_FE_PROFILE); a cell that raises fails the rule.
+profile of the build and the levels' labels in the environment (PENETRATION_FE_PROFILE, PENETRATION_LEVELS); a cell that raises fails the rule.
 Rendered without the code (a reader's document), every figure embedded and no script, stylesheet or font fetched
 from the network (nbconvert's lab template less its require.js, MathJax and mermaid loaders), so the file stands alone
 and reads the same offline. Its few equations are HTML text (sub- and superscripts, Unicode), which needs no
@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import base64
 import html as htmllib
+import json
 import os
 import re
 from pathlib import Path
@@ -20,6 +21,7 @@ from jinja2 import DictLoader
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 
+from ..levels import LABELS
 from ..pipeline.io import task, write_text
 
 
@@ -29,6 +31,7 @@ def report(inputs, outputs, params):
     for k, cell in enumerate(nb.cells):  # ids by position (jupytext draws random ones): the same source renders the same HTML
         cell.id = f"cell-{k}"
     os.environ["PENETRATION_FE_PROFILE"] = params.profile
+    os.environ["PENETRATION_LEVELS"] = json.dumps(LABELS)
     NotebookClient(nb, timeout=params.timeout_s, kernel_name="python3",
                    resources={"metadata": {"path": os.getcwd()}}).execute()
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", []) if o.get("output_type") == "error"]

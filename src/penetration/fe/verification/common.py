@@ -3,9 +3,9 @@ extrapolation of three meshes, the axial stress of a column."""
 from __future__ import annotations
 
 import functools
-import math
 
 from ...checks import below as _below
+from ...studies.stats import richardson
 from .. import state as fe_state
 
 
@@ -27,12 +27,11 @@ def _energy(name, result, bound):
                   bound, "1", "conservation (the audit)")
 
 
-def _richardson(f, ratio=2.0):
-    """Observed order, extrapolated value and the fine grid's GCI (Roache; safety 1.25) of three results f on
-    meshes refined by ``ratio`` (coarse first)."""
-    p = math.log(abs((f[0] - f[1]) / (f[1] - f[2]))) / math.log(ratio)
-    gain = ratio ** p - 1.0
-    return p, f[2] + (f[2] - f[1]) / gain, 1.25 * abs((f[2] - f[1]) / f[2]) / gain
+def _order_limit_gci(f, ratio=2.0):
+    """Observed order, extrapolated value and the fine grid's relative GCI (Roache; safety 1.25) of three results f
+    on meshes refined by ``ratio`` (coarse first)."""
+    p, limit, band, _ = richardson(f[0], f[1], f[2], ratio)
+    return p, limit, 1.25 * band / abs(f[2])
 
 
 def _stress(m, e=slice(None)):

@@ -16,7 +16,7 @@ from ..mesh import Grid, MeshSpec, body_outline, build
 from ..model import Controls, Model
 from ..solver import run
 from . import chain_reference, closed_forms as cf
-from .common import _richardson, problems
+from .common import _order_limit_gci, problems
 from .hjc_reference import homogeneous_path
 from .setups import element_path, noh_cylinder_run, pulse_column
 
@@ -40,7 +40,7 @@ def noh_cylindrical(meshes=(100, 200, 400)):
     source = "ExactPack noh / Noh (1987) (closed form)"
     rows = []
     for k, label, exact in ((0, "post-shock density (0.05 < r < 0.15 m)", rho_post), (1, "shock radius", shock)):
-        p, limit, gci = _richardson([r[k] for r in results])
+        p, limit, gci = _order_limit_gci([r[k] for r in results])
         rows += [_near(name, f"{label} extrapolated to h -> 0", limit, exact, 0.02, "kg/m^3" if k == 0 else "m",
                        source + "; within 2 %"),
                  Check(name, f"observed order of the {label}", p, 1.0, 0.7, 1.3, "1",

@@ -19,7 +19,7 @@ from ..rezone import R_MOVED
 from ..solver import run
 from . import chain_reference, closed_forms as cf
 from .cavity_reference import wall_stress
-from .common import _energy, _richardson, _stress, problems
+from .common import _energy, _order_limit_gci, _stress, problems
 from .setups import bar_on_face, distorted_grid, elastic, element_pass, nodal_forces, taylor_run
 
 PROBLEMS, problem = problems()
@@ -208,7 +208,7 @@ def taylor_bar(meshes=(5, 10, 20)):
              "7.11-7.23 mm: Zienkiewicz et al. 1998, Simo 1992, Foulk et al. 2021 (converged 7.22-7.226)"),
             ("final length", length, (21.42e-3, 21.48e-3), (21.42e-3, 21.43e-3),
              "21.42-21.48 mm: Foulk et al. 2021 (converged 21.42-21.43)")):
-        p, limit, gci = _richardson(values)
+        p, limit, gci = _order_limit_gci(values)
         for n, value, u in ((meshes[1], values[1], gci * 2.0 ** p), (meshes[2], values[2], gci)):
             rows.append(Check(f"Taylor bar, copper at 227 m/s ({n} elements across)", label, value, 0.5 * (low + high),
                               low * (1 - u), high * (1 + u), "m", source + "; widened by this mesh's grid convergence index"))
@@ -216,7 +216,7 @@ def taylor_bar(meshes=(5, 10, 20)):
                           f"{label} extrapolated to h -> 0 (Richardson)", limit, 0.5 * sum(converged),
                           converged[0] * (1 - gci), converged[1] * (1 + gci), "m",
                           source + "; the converged values widened by the finest mesh's grid convergence index"))
-    _, limit, _ = _richardson(share)
+    _, limit, _ = _order_limit_gci(share)
     name = f"Taylor bar, copper at 227 m/s ({meshes[1]} elements across)"
     m, res = runs[meshes[1]][:2]
     last = res.audit[-1]
