@@ -22,7 +22,7 @@
 # (workflow/rules/figures.smk).
 from pathlib import Path
 
-from penetration.pipeline.config import check_config, check_config_files
+from penetration.pipeline.config import check_config, check_config_files, load_check
 from penetration.pipeline.dispatch import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task, uncommitted
 from penetration.levels import LEVELS
 from penetration.pipeline.scenes import scene_names
@@ -73,10 +73,11 @@ wildcard_constraints:
 
 # FE outputs: `all` builds the configured profile only (full: the level's default mesh; ci: the CI's coarse one).
 FE_PROFILES = [config["fe_profile"]]
-# check.outputs entries under figures/fe/{profile}/ stand for the profile built; check.studies entries for the studies'
-# outputs ({band}: each band profile)
-CHECK_STUDIES = checked_outputs(config["check"], ["full", "ci"], BAND_PROFILES, "studies")
-config["check"]["outputs"] = checked_outputs(config["check"], FE_PROFILES)
+# the reproduction check (its own file, config `check`): its outputs under figures/fe/{profile}/ stand for the profile
+# built; the studies' ({band}: each band profile)
+CHECK = load_check(config["check"], "workflow/schemas/check.schema.json")
+CHECK_STUDIES = checked_outputs(CHECK, ["full", "ci"], BAND_PROFILES, "studies")
+CHECK["outputs"] = checked_outputs(CHECK, FE_PROFILES)
 
 
 def fe_cfg(profile):
@@ -124,7 +125,7 @@ include: "workflow/rules/reference.smk"
 REPORT_INPUTS = [
     expand("figures/{f}.png", f=FIGURES),
     expand("figures/{t}.csv", t=TABLES),
-    list(config["check"]["outputs"]),
+    list(CHECK["outputs"]),
     "figures/diff_summary.md",
     expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
     expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from penetration.pipeline.config import ConfigError, check_config
+from penetration.pipeline.config import ConfigError, check_config, load_check
 from penetration.pipeline.scenes import SceneError, read_scene, scene_data
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -212,15 +212,15 @@ def test_override_strings_that_are_not_finite_numbers_are_refused(value):
 
 @pytest.mark.parametrize("spec,where", [("cavity_gain,", "default"),
                                          ({"default": "cavity", "columns": {"gain_m": "cavity_gain,"}}, "gain_m")])
-def test_unknown_precision_class_is_noticed_at_load(monkeypatch, spec, where):
+def test_unknown_precision_class_is_noticed_at_load(tmp_path, spec, where):
     """A precision class that is not defined (here a YAML block value with a stray comma) stops the run at
-    load, naming the output and column, instead of failing the reproduction check at the end."""
-    monkeypatch.chdir(ROOT)
-    cfg = yaml.safe_load((ROOT / "workflow/config.yaml").read_text())
-    cfg["check"]["outputs"]["figures/nose_contrasts.csv"] = spec
-    with pytest.raises(ConfigError, match=f"check.outputs.figures/nose_contrasts.csv.{where}: precision class "
+    load, naming the file, the output and the column, instead of failing the reproduction check at the end."""
+    check = yaml.safe_load((ROOT / "workflow/check.yaml").read_text())
+    check["outputs"]["figures/nose_contrasts.csv"] = spec
+    (tmp_path / "check.yaml").write_text(yaml.safe_dump(check))
+    with pytest.raises(ConfigError, match=f"check.yaml: outputs.figures/nose_contrasts.csv.{where}: precision class "
                                           f"'cavity_gain,' is not defined"):
-        check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+        load_check(tmp_path / "check.yaml", ROOT / "workflow/schemas/check.schema.json")
 
 
 FE_BASE = scene_data(ROOT / "workflow/scenes/fe/table3.yaml")  # the fe scene of Table 3, the case merged in

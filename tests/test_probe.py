@@ -265,12 +265,22 @@ def refused_config(cfg):
 @pytest.mark.parametrize("dotted,value,needle", [
     ("fe/cutoff_hz", float("nan"), "fe.cutoff_hz: nan is not allowed: a finite number"),
     ("fe/target_radius", float("inf"), "fe.target_radius: inf is not allowed: a finite number"),
-    ("check/precision/round_off/atol", float("inf"), "check.precision.round_off.atol: inf is not allowed"),
     ("fig01/strengths", [20e6, float("nan")], "fig01.strengths.1: nan is not allowed"),
 ])
 def test_non_finite_numbers_anywhere_in_the_config_are_refused(monkeypatch, dotted, value, needle):
     monkeypatch.chdir(ROOT)
     assert needle in refused_config(config(**{dotted: value}))
+
+
+def test_a_non_finite_number_in_the_check_file_is_refused(tmp_path):
+    import yaml
+
+    from penetration.pipeline.config import ConfigError, load_check
+    check = yaml.safe_load((ROOT / "workflow/check.yaml").read_text())
+    check["precision"]["round_off"]["atol"] = float("inf")
+    (tmp_path / "check.yaml").write_text(yaml.safe_dump(check))
+    with pytest.raises(ConfigError, match="precision.round_off.atol: inf is not allowed"):
+        load_check(tmp_path / "check.yaml", ROOT / "workflow/schemas/check.schema.json")
 
 
 def test_the_shipped_config_is_finite_and_its_unfiltered_row_rule_still_picks_the_unfiltered_rows():
@@ -281,11 +291,12 @@ def test_the_shipped_config_is_finite_and_its_unfiltered_row_rule_still_picks_th
     from penetration.pipeline.config import non_finite, read_yaml
     from penetration.tasks.reference import cell_tolerances
     cfg = read_yaml(ROOT / "workflow/config.yaml")
-    assert non_finite(cfg) == []
-    spec = cfg["check"]["outputs"]["figures/fe/{profile}/fig14_cutoff.csv"]
+    check = read_yaml(ROOT / cfg["check"])
+    assert non_finite(cfg) == [] and non_finite(check) == []
+    spec = check["outputs"]["figures/fe/{profile}/fig14_cutoff.csv"]
     committed = pd.read_csv(ROOT / "figures/fe/ci/fig14_cutoff.csv")
-    tol = cell_tolerances(spec, cfg["check"]["precision"], cfg["check"]["factor"], committed)
-    spike = cfg["check"]["factor"] * cfg["check"]["precision"]["fe_spike"].get("rtol", 0.0)
+    tol = cell_tolerances(spec, check["precision"], check["factor"], committed)
+    spike = check["factor"] * check["precision"]["fe_spike"].get("rtol", 0.0)
     unfiltered = np.isinf(committed.cutoff_hz.to_numpy())
     assert unfiltered.sum() > 0
     assert np.all(tol["peak_g"][0][unfiltered] == spike)

@@ -33,9 +33,9 @@ rule diff:
 
 
 use rule diff as reproduce_check with:
-    input: **task("tasks.reference"), outputs=list(config["check"]["outputs"]), diff="figures/diff.csv",
+    input: **task("tasks.reference"), outputs=list(CHECK["outputs"]), diff="figures/diff.csv",
     output: report="results/check/reproduce_check.txt",
-    params: check=config["check"],
+    params: check=CHECK,
     benchmark: "results/benchmarks/reproduce_check.tsv"
     log: "results/logs/reproduce_check.log",
 
@@ -44,6 +44,6 @@ use rule diff as reproduce_check with:
 use rule diff as reproduce_check_studies with:
     input: **task("tasks.reference"), outputs=list(CHECK_STUDIES),
     output: report="results/check/reproduce_check_studies.txt",
-    params: check={**config["check"], "outputs": CHECK_STUDIES},
+    params: check={**CHECK, "outputs": CHECK_STUDIES},
     benchmark: "results/benchmarks/reproduce_check_studies.tsv"
     log: "results/logs/reproduce_check_studies.log",

@@ -173,7 +173,7 @@ def coerce(data, schema):
 
 
 # config fields naming input files (dotted path): checked to exist when the config is loaded
-FILE_FIELDS = ("reference", "findings", "validation.shots")
+FILE_FIELDS = ("reference", "findings", "check", "validation.shots")
 # config fields naming rows of the reference file by id ("[]" walks a list)
 REFERENCE_FIELDS = ("projectile.density", "projectile.diameter", "table4_do1.nstar_target", "table4_do1.mass_target",
                     "calibration.do1.mass", "calibration.do1.velocity", "calibration.do1.depth",
@@ -408,14 +408,22 @@ def check_config(cfg: dict, schema_path, source: str) -> dict:
     bad = _ordered_problems(cfg, source) + _size_problems(cfg, source, ids)
     if bad:
         raise ConfigError("\n".join(bad))
-    classes = cfg["check"]["precision"]
+    return cfg
+
+
+def load_check(path, schema_path) -> dict:
+    """The reproduction check's file (config ``check``: precision classes, the outputs and studies they apply to),
+    validated against its schema, every class an output names defined."""
+    check = load(path, schema_path)
+    classes = check["precision"]
     bad = []
-    for path, spec in cfg["check"]["outputs"].items():
-        spec = {"default": spec} if isinstance(spec, str) else spec
-        for column, name in [("default", spec.get("default"))] + list(spec.get("columns", {}).items()):
-            if name not in classes:
-                bad.append(f"{source}: check.outputs.{path}.{column}: precision class {name!r} is not defined; "
-                           f"allowed: one of {sorted(classes)}")
+    for section in ("outputs", "studies"):
+        for out, spec in check.get(section, {}).items():
+            spec = {"default": spec} if isinstance(spec, str) else spec
+            named = [("default", spec.get("default"))] + list(spec.get("columns", {}).items()) + [
+                (f"rows[{k}].{c}", n) for k, row in enumerate(spec.get("rows", [])) for c, n in row["columns"].items()]
+            bad += [f"{path}: {section}.{out}.{column}: precision class {name!r} is not defined; allowed: one of "
+                    f"{sorted(classes)}" for column, name in named if name is not None and name not in classes]
     if bad:
         raise ConfigError("\n".join(bad))
-    return cfg
+    return check

@@ -1,11 +1,11 @@
 """Tasks of the reference stage: the diff against the paper and the reproduction check.
 
-The reproduction check compares every committed output CSV listed in the
-config's ``check.outputs`` with the one the pipeline just made. Each column
+The reproduction check compares every committed output CSV listed under
+``outputs`` in workflow/check.yaml with the one the pipeline just made. Each column
 is compared with the tolerance of its precision class: a value passes when
 |now - committed| <= factor * (atol + rtol |committed| + scale max|committed column|),
 where (rtol, atol, scale) is what the producer of the column guarantees
-(``check.precision``) and ``factor`` the margin. A class with ``decades``
+(its ``precision``) and ``factor`` the margin. A class with ``decades``
 compares orders of magnitude instead (error estimates of accuracy studies):
 |log10((|now| + F atol)/(|committed| + F atol))| <= F decades, F the factor.
 Text columns must match.
@@ -273,7 +273,7 @@ def reproduce_check(inputs, outputs, params):
     """Fail when a committed output CSV or a reproduced diff row has drifted beyond its tolerance."""
     problems, compared = reproduction_problems(list(params.check["outputs"]), inputs.diff, params.check)
     report = [f"compared {compared} committed CSV files (tolerance factor {params.check['factor']:g} on the "
-              f"precision class of each column, config check.outputs)"]
+              f"precision class of each column, workflow/check.yaml, outputs)"]
     if compared == 0:
         report.append("warning: no committed copies found (not a git checkout?); only the current diff was checked")
     now = pd.read_csv(inputs.diff)
@@ -290,7 +290,7 @@ def reproduce_check_studies(inputs, outputs, params):
     """Fail when a committed output CSV of the studies has drifted beyond its tolerance."""
     problems, compared = reproduction_problems(list(params.check["outputs"]), None, params.check)
     report = [f"compared {compared} committed CSV files of the studies (tolerance factor {params.check['factor']:g} on "
-              f"the precision class of each column, config check.studies)"] + problems
+              f"the precision class of each column, workflow/check.yaml, studies)"] + problems
     print("\n".join(report))
     if problems:
         raise SystemExit(f"reproduction check of the studies failed: {len(problems)} problem(s)")
