@@ -9,7 +9,8 @@ from penetration.errors import ParameterError
 from penetration.fe import state as S
 from penetration.fe.element import moment
 from penetration.fe.mesh import Grid, MeshSpec, build, opened_columns
-from penetration.fe.rezone import R_COUNT, R_ENERGY, R_MOMENTUM, R_MOVED, rezone
+from penetration.fe.erosion_free.controls import ErosionFree
+from penetration.fe.erosion_free.rezone import R_COUNT, R_ENERGY, R_MOMENTUM, R_MOVED, rezone
 from penetration.fe.spec import Controls, RunSpec, Settings, TargetSpec
 
 
@@ -44,7 +45,7 @@ def test_a_mesh_refuses_an_opened_radius_out_of_range(kwargs, field):
 
 def test_the_erosion_free_target_refuses_erosion_and_a_pilot_hole_out_of_range():
     with pytest.raises(ParameterError, match="erosion"):
-        Controls(erosion_free=True, erosion="plastic_strain", erosion_value=1.0)
+        Controls(erosion_free=ErosionFree(), erosion="plastic_strain", erosion_value=1.0)
     with pytest.raises(ParameterError, match="erosion"):
         RunSpec(None, 81.1, 835.0, None, Settings().with_failure_strain(1.0), TargetSpec(formulation="erosion_free"))
     for bad in (0.0, 1.0):
@@ -53,7 +54,7 @@ def test_the_erosion_free_target_refuses_erosion_and_a_pilot_hole_out_of_range()
     with pytest.raises(ParameterError, match="formulation"):
         TargetSpec(formulation="ale")
     with pytest.raises(ParameterError, match="rezone_weight"):
-        Controls(rezone_weight=0.0)
+        ErosionFree(rezone_weight=0.0)
 
 
 # ------------------------------------------------------------------ the remap
@@ -193,7 +194,7 @@ def test_the_crater_wall_is_ejected_where_it_thins_only_within_the_crater_depth_
     """rezone.eject below the struck face: a column thinned to 0.1 of the element size is left alone when the
     crater is not asked for (crater 0) and ejected down to the crater depth when it is, row by row: exactly the
     elements whose centre lies above that depth; the columns at full width are never touched."""
-    from penetration.fe.rezone import R_EJECT, eject
+    from penetration.fe.erosion_free.rezone import R_EJECT, eject
     h, nr, nz = 0.01, 5, 12
     g = Grid.tensor(0.02 + h * np.arange(nr + 1), h * np.arange(nz + 1))
     X = np.vstack(g.nodes())
@@ -216,10 +217,10 @@ def test_the_crater_wall_is_ejected_only_once_the_tip_is_past_crater_thin_after(
     from penetration.concrete.hjc import HJC
     from penetration.fe.model import Model
     with pytest.raises(ParameterError, match="crater_thin_after"):
-        Controls(crater_thin_after=-1.0)
+        ErosionFree(crater_thin_after=-1.0)
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
-    m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
-                                 crater_depth=0.08, crater_thin_after=0.5))
+    m = Model(g, HJC(), Controls(erosion_free=ErosionFree(eject_height=0.02, crater_depth=0.08, crater_thin_after=0.5),
+                                 guard=True, drop_free_nodes=False))
     nn = g.nr + 1
     m.X[0, 1::nn] = m.X[0, 0::nn] + 0.1 * m.element_size   # the wall column thinned in every row
     m.set_window(0.4)
@@ -238,11 +239,12 @@ def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_
     (its mass kept on the nodes), one less than crater_depth below it is crater debris (ejected, its mass booked as
     such), and one deeper stops the run with its place named."""
     from penetration.concrete.hjc import HJC
-    from penetration.fe.erosion import InsideTarget, retire
+    from penetration.fe.erosion import retire
+    from penetration.fe.erosion_free.debris import InsideTarget
     from penetration.fe.model import Model
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
-    m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
-                                 crater_depth=0.08))
+    m = Model(g, HJC(), Controls(erosion_free=ErosionFree(eject_height=0.02, crater_depth=0.08), guard=True,
+                                 drop_free_nodes=False))
     zc = m.z[m.conn].mean(axis=1)
     lip = int(np.argmin(zc))                          # the first row, its centre above z = 0 once moved up
     m.z[m.conn[lip]] -= 0.02
@@ -266,15 +268,17 @@ def test_the_guard_ejects_a_wall_element_behind_the_tail_as_wall_debris_and_stop
     wall debris, not as crater debris); one with a node within that reach of the tip still stops the run, and so does
     any deep one when wall_debris_behind is None; a negative wall_debris_behind is refused, naming the field."""
     from penetration.concrete.hjc import HJC
-    from penetration.fe.erosion import InsideTarget, retire
+    from penetration.fe.erosion import retire
+    from penetration.fe.erosion_free.debris import InsideTarget
     from penetration.fe.model import Model
     with pytest.raises(ParameterError, match="wall_debris_behind"):
-        Controls(wall_debris_behind=-0.1)
+        ErosionFree(wall_debris_behind=-0.1)
     g = build(MeshSpec(0.01, 0.04, 0.3, 0.1, 0.3, 1.1, pilot_hole=0.005, opened_radius=0.02))
 
     def model(behind):
-        m = Model(g, HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False, eject_height=0.02,
-                                     crater_depth=0.08, wall_debris_behind=behind))
+        m = Model(g, HJC(), Controls(erosion_free=ErosionFree(eject_height=0.02, crater_depth=0.08,
+                                                              wall_debris_behind=behind),
+                                     guard=True, drop_free_nodes=False))
         m.set_window(0.25)      # the tip 0.25 m deep: its tail, 0.1 m behind it, at 0.15 m
         return m
 

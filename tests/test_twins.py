@@ -97,3 +97,23 @@ def test_the_calibration_memo_hashes_the_code_closure():
     assert {"fe/level.py", "fe/solver.py", "fe/element_pass.py", "concrete/hjc.py", "fe/spec.py"} <= names
     assert not any(n.startswith(("tasks/", "figures/")) for n in names)
     assert _occurs(r"PACKAGE ?/ ?\"[a-z_/]+\.py\"") == []
+
+
+def test_one_switch_between_the_eroding_and_the_erosion_free_target():
+    """A target states its formulation (TargetSpec.formulation, read where a shot's model is built); the solver sees
+    one object, Controls.erosion_free (the erosion-free target's own controls, None on the eroding target): no
+    boolean flag, no copy on the model, and no field of the erosion-free target among the solver's controls."""
+    import dataclasses
+
+    from penetration.fe.erosion_free.controls import ErosionFree
+    from penetration.fe.spec import Controls
+    solver = {f.name: f for f in dataclasses.fields(Controls)}
+    assert solver["erosion_free"].default is None
+    assert not set(solver) & {f.name for f in dataclasses.fields(ErosionFree)}
+    flags = sorted(path for path, tree in TREES.items() for n in ast.walk(tree) if isinstance(n, ast.Attribute)
+                   and n.attr == "erosion_free" and isinstance(n.ctx, ast.Store))
+    assert flags == []
+    readers = sorted({path for path, tree in TREES.items() for n in ast.walk(tree)
+                      if isinstance(n, ast.Attribute) and n.attr == "formulation"})
+    assert all(p in ("src/penetration/fe/spec.py", "src/penetration/fe/shot.py", "src/penetration/fe/level.py")
+               or p.startswith(("src/penetration/tasks/", "workflow/")) for p in readers), readers

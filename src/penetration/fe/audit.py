@@ -8,7 +8,7 @@ Energy balance:
 with E_eroded the internal energy of eroded elements plus the kinetic energy of dropped free nodes, W_contact the
 kinetic energy the kinematic contact removes (its impulses are perfectly inelastic), W_boundary the work absorbed
 by non-reflecting boundaries, E_window what the moving window retired, W_external the work of loads and
-prescribed velocities, E_remap the kinetic energy the erosion-free target's remap removed (``fe.rezone``) and
+prescribed velocities, E_remap the kinetic energy the erosion-free target's remap removed (``fe.erosion_free.rezone``) and
 E_ejecta the internal energy of its ejected elements (their mass and kinetic energy stay in the model). The error
 is reported relative to E_0 (plus |W_external|). The axial momentum balances likewise with the dropped nodes'
 momentum, the remap's and the dashpots' impulse.

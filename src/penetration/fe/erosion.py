@@ -4,19 +4,16 @@ An element erodes once its criterion's quantity reaches the erosion value: the e
 (``plastic_strain``, LS-DYNA's *MAT_ADD_EROSION with the failure strain the paper calibrates), the accumulated
 equivalent strain (``effective_strain``), the volumetric tension 1/mu_ratio - 1 (``volumetric_tension``) or the
 damage (``damage``). The element pass marks it ERODING and books its internal energy; ``retire`` then removes it
-and drops (or frees) the nodes it leaves without any element, booking their mass, kinetic energy and momentum.
+and drops (or frees) the nodes it leaves without any element, booking their mass, kinetic energy and momentum. On
+the erosion-free target nothing erodes: the guard's elements are debris (``erosion_free.debris``).
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-from .state import (ACTIVE, DAMAGE, EFFECTIVE_STRAIN, EJECTED, ERODED, ERODING, FREE, IE, MASS, PLASTIC_STRAIN,
-                    VOLUMETRIC_TENSION)
-
-
-class InsideTarget(RuntimeError):
-    """An element of the erosion-free target lost its shape below the struck face (it may not be removed)."""
+from .erosion_free import debris
+from .state import ACTIVE, DAMAGE, EFFECTIVE_STRAIN, ERODED, ERODING, FREE, MASS, PLASTIC_STRAIN, VOLUMETRIC_TENSION
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -34,25 +31,8 @@ def retire(model):
     just = np.flatnonzero(model.alive == ERODING)
     if just.size == 0:
         return 0
-    if model.erosion_free:
-        # the guard's elements are ejecta above the struck face and debris in the crater (down to crater_depth below
-        # it, where concrete spalls from the free surface) or, deeper, of the tunnel's wall behind the projectile's
-        # tail (wall_debris_behind above the tip: out of the projectile's reach); none other inside the target may go
-        zc = model.z[model.conn[just]].mean(axis=1)
-        crater = model.controls.crater_depth or 0.0
-        deep = just[zc >= crater]
-        behind = model.controls.wall_debris_behind
-        wall = deep[:0]
-        if deep.size and behind is not None:
-            reach = model.z[model.conn[deep]].max(axis=1) < model.tip - behind
-            wall, deep = deep[reach], deep[~reach]
-        if deep.size:
-            raise InsideTarget(f"{model.where(int(deep[0]))} lost its shape inside the target at t = {model.t:.6g} s")
-        model.wall_debris_mass += float(model.E[MASS, wall].sum())
-        model.alive[just] = EJECTED
-        model.ejected_mass += float(model.E[MASS, just].sum())
-        model.crater_debris_mass += float(model.E[MASS, just[(zc >= 0.0) & (zc < crater)]].sum())
-        model.E_ejecta += float(model.E[IE, just].sum())
+    if model.controls.erosion_free:   # nothing is deleted: the guard's elements are debris (fe.erosion_free.debris)
+        debris.eject(model, just)
     else:
         model.alive[just] = ERODED
         model.eroded_mass += float(model.E[MASS, just].sum())
@@ -60,7 +40,7 @@ def retire(model):
     np.subtract.at(model.count, nodes, 1)
     free = np.unique(nodes[model.count[nodes] == 0])
     free = free[model.nstate[free] == ACTIVE]
-    if model.controls.drop_free_nodes and not model.erosion_free:
+    if model.controls.drop_free_nodes and not model.controls.erosion_free:
         kinetic, mass = model.drop_nodes(free)
         model.E_eroded += kinetic
         model.dropped_mass += mass

@@ -33,6 +33,28 @@ def _check_table1_target(scene, refs):
                              f"{want} (the HJC set of Table 1 exists for this concrete only)")
 
 
+def run_spec(nose, mass, velocity, material, settings, target, expected_depth, friction=0.0, failure_strain=None):
+    """The run spec of one FE shot, assembled here and nowhere else (a scene's shot, the DO1 calibrations, a user's
+    shot): the rigid projectile (``nose``, ``mass``, striking ``velocity``, Coulomb ``friction``), the target's
+    ``material``, the mesh and run ``settings`` (with element erosion at ``failure_strain`` where one is given), the
+    ``target`` and the ``expected_depth`` that sizes a semi-infinite domain."""
+    if failure_strain is not None:
+        settings = settings.with_failure_strain(float(failure_strain))
+    return RunSpec(nose, mass, velocity, material, settings, target, expected_depth, friction)
+
+
+def scene_concrete(scene, refs, concrete_cfg):
+    """(the concrete of an FE scene at a strength scale k, as a function of k (default 1: Table 1's strength); its
+    material switches): concrete.configured with the scene's effects and named conventions."""
+    switches = concrete.material_switches(scene.effects, scene.material, concrete_cfg)
+    return (lambda k=1.0: concrete.configured(refs, concrete_cfg, strength_scale=k, **switches)), switches
+
+
+def scene_target(scene, fe_cfg):
+    """The target of an FE scene (its fe slice) with the ``fe`` config slice's radius and block depth."""
+    return TargetSpec.from_scene(scene.fe, fe_cfg["target_radius"], fe_cfg["block_depth"])
+
+
 def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expected_depth, calibration=None,
                velocity_factor=1.0, domain=None):
     """The run spec of one shot of an FE scene (``nose``: the name of one of its noses, at one of its ``velocity``
@@ -45,15 +67,13 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
     v = float(velocity)
     if not np.any(np.isclose(scene.velocities, v)):
         raise ValueError(f"{scene.name}: velocity {v} is not among the scene's {list(scene.velocities)}")
-    switches = concrete.material_switches(scene.effects, scene.material, concrete_cfg)
+    material_at, switches = scene_concrete(scene, refs, concrete_cfg)
     settings = scene_settings(scene, fe_cfg, profile, domain)
-    target = TargetSpec.from_scene(scene.fe, fe_cfg["target_radius"], fe_cfg["block_depth"])
-    scale, scale_provenance, scaled = 1.0, "none (Table 1's HJC as stated)", {}
+    target = scene_target(scene, fe_cfg)
+    scale, scale_provenance = 1.0, "none (Table 1's HJC as stated)"
     if scene.fe.get("strength_scale") == "calibrated":
         scale, scale_provenance = _strength_calibration(scene, calibration, settings, target, profile)
-        scaled = {"strength_scale": scale}
         calibration = None   # the record belongs to the strength scale, not to an erosion strain
-    material = concrete.configured(refs, concrete_cfg, **switches, **scaled)
     fs = scene.fe.get("erosion_strain")
     provenance = "none (no erosion: only the guards remove inverted elements)"
     if fs == "calibrated":
@@ -63,10 +83,8 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
             raise ValueError(f"calibration at element size {calibration['element_size']} m used on a "
                              f"{settings.element_size} m mesh")
         fs, provenance = calibration["fs"], f"calibrated on DO1 at element size {calibration['element_size']} m"
-    if fs is not None:
-        settings = settings.with_failure_strain(float(fs))
-    spec = RunSpec(scene.noses[nose], scene.mass, v * velocity_factor, material, settings, target, expected_depth,
-                   scene.friction)
+    spec = run_spec(scene.noses[nose], scene.mass, v * velocity_factor, material_at(scale), settings, target,
+                    expected_depth, scene.friction, fs)
     return spec, {"failure_strain": fs, "failure_strain_provenance": provenance, "material_switches": switches,
                   "strength_scale": scale, "strength_scale_provenance": scale_provenance}
 

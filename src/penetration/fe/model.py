@@ -13,11 +13,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import element_pass as _element_pass, erosion, nodes as _nodes, rezone as _rezone, window
+from . import element_pass as _element_pass, erosion, nodes as _nodes, window
+from .erosion_free import rezone as _rezone
 from .constitutive import impedances, material_of
 from .contact import Projectile
 from .mesh import Grid
-from .rezone import R_COUNT, R_ENERGY, R_MOMENTUM
+from .erosion_free.rezone import R_COUNT, R_ENERGY, R_MOMENTUM
 from .spec import Controls
 from .state import (ACTIVE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, DROPPED,
                     EROSION_KINDS, FIX_R, FIX_Z, FREE, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Body, Boundary, Loads,
@@ -114,18 +115,18 @@ class Model:
         self.dash_base = self.dash.copy()
         self.presc_i, self.presc_v = np.zeros(0, np.int64), np.zeros((2, 0))
         self.load_i, self.load_f = np.zeros(0, np.int64), np.zeros((2, 0))
-        self.erosion_free = c.erosion_free   # the erosion-free target: its guard ejects, never erodes (fe.erosion)
         self.ejected_mass = 0.0
-        self.crater_debris_mass = 0.0   # of the ejected: below the struck face, in the crater (fe.erosion.retire)
-        self.wall_debris_mass = 0.0     # of the ejected: the tunnel's wall deeper, behind the tail (fe.erosion.retire)
+        self.crater_debris_mass = 0.0   # of the ejected: below the struck face, in the crater (fe.erosion_free.debris)
+        self.wall_debris_mass = 0.0     # of the ejected: the tunnel's wall deeper, behind the tail (fe.erosion_free.debris)
         self.tip = -np.inf   # the projectile tip's depth at the last set_window (m)
         self.E_ejecta = 0.0
-        self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.rezone: energy, momentum, moves)
-        rz = np.inf if c.rezone_radius is None else c.rezone_radius
+        self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.erosion_free.rezone: energy, momentum, moves)
+        free = c.erosion_free   # the erosion-free target's controls, None on the eroding one
+        rz = np.inf if free is None or free.rezone_radius is None else free.rezone_radius
         self.rezone_columns = int(min(g.nr, max(2, np.searchsorted(g.R[0], rz))))
         self.element_size = float(g.Z[1, 0] - g.Z[0, 0])   # the core's (its first row)
         # the pilot hole's guide: its radius (the hole's wall, node column 0), 0 without one
-        self.guide = float(g.R[0, 0]) if c.pilot_guide and g.R[0, 0] > 0.0 else 0.0
+        self.guide = float(g.R[0, 0]) if free is not None and free.pilot_guide and g.R[0, 0] > 0.0 else 0.0
         self.dt = self._initial_dt()
         self.dt0 = self.dt
         self.ctl[C_DTMIN] = c.dt_floor * self.dt0 / c.dt_factor
@@ -223,8 +224,8 @@ class Model:
 
     def rezone(self):
         """Eject the lip above the struck face (a penetration shot's: eject_height set), then rezone and remap the
-        window's zone (``fe.rezone``); returns 0 or the element that stopped the remap."""
-        c = self.controls
+        window's zone (``fe.erosion_free.rezone``); returns 0 or the element that stopped the remap."""
+        c = self.controls.erosion_free
         zone = (self.nr, self.j0, self.j1, self.rezone_columns)
         thin_crater = c.crater_thin_after is not None and self.tip > c.crater_thin_after
         crater = (c.crater_depth or 0.0) if thin_crater else 0.0

@@ -18,6 +18,7 @@ from scipy.signal import butter, filtfilt
 
 from . import state as fe_state
 from .contact import Projectile
+from .erosion_free.controls import ErosionFree
 from .mesh import MeshSpec, body_outline, build
 from .model import Model
 from .solver import LOG, run
@@ -47,18 +48,19 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
                        window_ahead=settings.window_ahead, window_behind=behind)
     if target.formulation == "erosion_free":
         # rezoned out to twice the core (the crater's heave reaches past the core); what flies farther than the shank
-        # radius above the struck face, or loses its shape above it, is ejected (fe.rezone.eject, fe.erosion); so is
+        # radius above the struck face, or loses its shape above it, is ejected (fe.erosion_free.rezone.eject, fe.erosion_free.debris); so is
         # what thins in the crater (down to four shank radii) once the whole projectile has passed below it; deeper,
         # an element of the tunnel's wall that loses its shape behind the projectile's tail is wall debris
-        crater = 4.0 * nose.radius if controls.crater_depth is None else controls.crater_depth
-        controls = replace(controls, erosion_free=True, guard=True, drop_free_nodes=False, pilot_guide=target.pilot_guide,
-                           rezone_radius=2.0 * spec.core_radius,
-                           eject_height=nose.radius if controls.eject_height is None else controls.eject_height,
-                           crater_depth=crater,
-                           crater_thin_after=(crater + settings.body_length if controls.crater_thin_after is None
-                                              else controls.crater_thin_after),
-                           wall_debris_behind=(settings.body_length if controls.wall_debris_behind is None
-                                               else controls.wall_debris_behind))
+        given = controls.erosion_free or ErosionFree()
+        crater = 4.0 * nose.radius if given.crater_depth is None else given.crater_depth
+        free = replace(given, pilot_guide=target.pilot_guide, rezone_radius=2.0 * spec.core_radius,
+                       eject_height=nose.radius if given.eject_height is None else given.eject_height,
+                       crater_depth=crater,
+                       crater_thin_after=(crater + settings.body_length if given.crater_thin_after is None
+                                          else given.crater_thin_after),
+                       wall_debris_behind=(settings.body_length if given.wall_debris_behind is None
+                                           else given.wall_debris_behind))
+        controls = replace(controls, erosion_free=free, guard=True, drop_free_nodes=False)
     return Model(build(spec), material, controls)
 
 

@@ -26,7 +26,7 @@ from numba import njit
 from .audit import Audit
 from .contact import Projectile, contact
 from .element_pass import element_pass
-from .erosion import InsideTarget
+from .erosion_free.debris import InsideTarget
 from .model import Model, body_of
 from .nodes import external, guide, move, node_pass
 from .state import (A_BOUNDARY, A_BOUNDARY_IMPULSE, A_CONTACT, A_ERODED, A_HOURGLASS, A_STEPS, AT_REST, B_ACTIVE,
@@ -159,7 +159,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None):
     while True:
         st = State(model.span(), model.nodes(), model.kind, model.q, model.boundary(), model.loads(), body, model.E,
                    model.F, model.alive, model.X, model.V, model.rows.f, model.rows.i)
-        k_pause = k + c.rezone_every if c.erosion_free else np.iinfo(np.int64).max
+        k_pause = k + c.erosion_free.rezone_every if c.erosion_free else np.iinfo(np.int64).max
         code, dt, model.t, k_new = advance(st, proj, model.ctl, rec, model.t, dt,
                                            min(next_out + c.output_interval, c.end_time), c.dt_factor, k, k_pause)
         model.steps += k_new - k
@@ -170,7 +170,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None):
             except InsideTarget as err:
                 status, diag = "failed", str(err)
                 break
-            if model.erosion_free:
+            if c.erosion_free:
                 rec.acc[A_ERODED] = 0.0   # the guard's elements were ejecta (booked as model.E_ejecta)
         if c.erosion_free and code in (REACHED, PAUSED):
             bad = model.rezone()

@@ -32,6 +32,7 @@ import math
 from dataclasses import dataclass, field, fields, replace
 
 from ..errors import ParameterError
+from .erosion_free.controls import ErosionFree
 from .state import BOUNDARIES, EROSION_KINDS
 
 
@@ -54,22 +55,8 @@ class Controls:
     max_energy_error: float = 0.5  # stop (unstable) when the audit's relative error exceeds this
     window_ahead: float | None = None   # m: rows computed down to this far ahead of the tip (None: whole domain)
     window_behind: float | None = None  # m: rows further behind the tip than this are retired (None: kept)
-    erosion_free: bool = False          # the erosion-free target: rezoned, its guard ejects (fe.rezone, fe.erosion)
-    rezone_every: int = 5               # steps between its rezones
-    rezone_quality: float = 0.95        # a node is rezoned when one of its elements' quality is below this
-    rezone_weight: float = 0.5          # share of the way to the smoothed place a rezoned node moves
-    rezone_radius: float | None = None  # m: the zone's extent from the axis (None: the whole width)
-    eject_length: float = 0.25          # an element above the struck face thinner than this many element sizes is ejected
-    eject_height: float | None = None   # m: one whose centre is farther above the face than this too (None: no
-    #                                     ejection at all: a problem without a struck face)
-    pilot_guide: bool = False           # a rigid frictionless guide fills the pilot hole: its wall nodes keep r >= r0
-    crater_depth: float | None = None   # m: an element that loses its shape less than this below the struck face is
-    #                                     crater debris, ejected like the lip (None: none; deeper ones stop the run)
-    crater_thin_after: float | None = None  # m: once the tip is deeper than this, an element of the crater thinner
-    #                                     than eject_length element sizes is crater debris too (None: never)
-    wall_debris_behind: float | None = None  # m: an element deeper than the crater that loses its shape with every
-    #                                     node more than this above the tip (behind the projectile's tail, out of its
-    #                                     reach) is wall debris, ejected like the crater's (None: it stops the run)
+    erosion_free: ErosionFree | None = None  # the erosion-free target's controls (fe.erosion_free): rezoned, its
+    #                                     guard ejects and never erodes; None: the eroding target
 
     def __post_init__(self):
         if not 0.0 < self.dt_factor <= 1.0:
@@ -89,27 +76,8 @@ class Controls:
                 raise ParameterError("fe controls", key, v, "> 0 (m) or None")
         if not (self.end_time > 0 and self.output_interval > 0):
             raise ParameterError("fe controls", "end_time, output_interval", (self.end_time, self.output_interval), "> 0 (s)")
-        if not (isinstance(self.rezone_every, int) and 1 <= self.rezone_every <= 1000):
-            raise ParameterError("fe controls", "rezone_every", self.rezone_every, "an integer 1 <= rezone_every <= 1000 (steps)")
-        if self.erosion_free and self.erosion != "none":
+        if self.erosion_free is not None and self.erosion != "none":
             raise ParameterError("fe controls", "erosion", self.erosion, "none for the erosion-free target")
-        if not 0.0 < self.rezone_quality <= 1.0:
-            raise ParameterError("fe controls", "rezone_quality", self.rezone_quality, "0 < rezone_quality <= 1")
-        if not 0.0 < self.rezone_weight <= 1.0:
-            raise ParameterError("fe controls", "rezone_weight", self.rezone_weight, "0 < rezone_weight <= 1")
-        if not 0.0 < self.eject_length <= 1.0:
-            raise ParameterError("fe controls", "eject_length", self.eject_length, "0 < eject_length <= 1 (element sizes)")
-        if self.eject_height is not None and not self.eject_height > 0:
-            raise ParameterError("fe controls", "eject_height", self.eject_height, "> 0 (m) or None")
-        if self.crater_depth is not None and not self.crater_depth >= 0:
-            raise ParameterError("fe controls", "crater_depth", self.crater_depth, ">= 0 (m) or None")
-        if self.crater_thin_after is not None and not self.crater_thin_after >= 0:
-            raise ParameterError("fe controls", "crater_thin_after", self.crater_thin_after, ">= 0 (m) or None")
-        if self.wall_debris_behind is not None and not self.wall_debris_behind >= 0:
-            raise ParameterError("fe controls", "wall_debris_behind", self.wall_debris_behind, ">= 0 (m) or None")
-        if self.rezone_radius is not None and not self.rezone_radius > 0:
-            raise ParameterError("fe controls", "rezone_radius", self.rezone_radius, "> 0 (m) or None")
-
 
 
 BLOCK_RADIUS = 3.6 / math.sqrt(math.pi)  # equal cross-section area with the 3.6 m x 3.6 m block
@@ -117,7 +85,7 @@ BLOCK_RADIUS = 3.6 / math.sqrt(math.pi)  # equal cross-section area with the 3.6
 
 TARGET_FACES = ("non_reflecting", "free")
 # eroding: the paper's counterpart (elements deleted at a failure strain); erosion_free: no element of the target
-# is deleted, the nose opens a pilot hole along the axis and the mesh near it is rezoned (fe.rezone)
+# is deleted, the nose opens a pilot hole along the axis and the mesh near it is rezoned (fe.erosion_free)
 FORMULATIONS = ("eroding", "erosion_free")
 
 

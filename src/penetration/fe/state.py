@@ -50,7 +50,7 @@ SKIP, DONE, SCALAR, BAD_SHAPE, CHECK = 0.0, 1.0, 2.0, 3.0, 4.0
 # ---- element states (the array alive)
 ERODED, LIVE, ERODING, INACTIVE, RETIRED, EJECTED = 0, 1, 2, 3, 4, 5   # ERODING: eroded in this pass (bookkept after it)
 # EJECTED: an element of the erosion-free target thrown out above the struck face that lost its shape: it carries
-# no stress from then on, its mass stays on its nodes (fe.erosion.retire)
+# no stress from then on, its mass stays on its nodes (fe.erosion_free.debris)
 # ---- node states (Nodes.state); a node at DROPPED or beyond keeps its velocity and is not moved
 ACTIVE, FREE, DROPPED, WAITING = 0, 1, 2, 3   # FREE: no element left but kept; WAITING: below the window
 

@@ -47,7 +47,7 @@ def configure_llvm():
 
 def check():
     """Delete stale numba cache files of the package (returns how many were deleted)."""
-    caches = [PACKAGE / folder / "__pycache__" for folder in ("concrete", "cavity", "fe")]
+    caches = sorted(PACKAGE.rglob("__pycache__"))   # every folder: a kernel may inline one of another folder
     want = fingerprint()
     stamp = PACKAGE / "__pycache__" / STAMP
     try:

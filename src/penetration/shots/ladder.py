@@ -245,11 +245,12 @@ def fe_spec(shot: UserShot, ctx: Context):
     """The fe level's run spec of a user's shot, built once: the calibration mesh and settings scaled to the shot's
     radius (fe_settings_for), the shot's concrete (fe_material), a semi-infinite target of the context's radius
     scaled likewise, and the domain's depth from the closed form (shots.expected_depth). Returns (spec, scale)."""
-    from ..fe.shot import RunSpec, TargetSpec
+    from ..fe.level import run_spec
+    from ..fe.shot import TargetSpec
     settings, k = fe_settings_for(shot, ctx)
-    return RunSpec(shot.nose, shot.mass, shot.velocity, fe_material(shot, ctx), settings,
-                   TargetSpec("semi_infinite", ctx.fe_target_radius * k),
-                   expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)), k
+    return run_spec(shot.nose, shot.mass, shot.velocity, fe_material(shot, ctx), settings,
+                    TargetSpec("semi_infinite", ctx.fe_target_radius * k),
+                    expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)), k
 
 
 def _fe(shot, ctx, log=None):

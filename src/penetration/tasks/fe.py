@@ -18,9 +18,10 @@ import pandas as pd
 
 from ..concrete import material as concrete
 from ..fe import state as fe_state
-from ..fe.level import calibrate_failure_strain, calibrate_strength_scale, domain_of, scene_settings, scene_spec
+from ..fe.level import (calibrate_failure_strain, calibrate_strength_scale, domain_of, run_spec, scene_concrete,
+                        scene_settings, scene_spec, scene_target)
 from ..fe.mesh import MeshSpec, body_outline, build
-from ..fe.shot import RunSpec, Settings, TargetSpec, binned, lowpass, progress_to, run_shot
+from ..fe.shot import Settings, TargetSpec, binned, lowpass, progress_to, run_shot
 from ..fe.solver import Unstable
 from ..paper import reference
 from ..pipeline.dispatch import code_closure
@@ -89,9 +90,9 @@ def calibrate_fe_do1(inputs, outputs, params):
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
     rho, fc = refs["table1.rho"].si, refs["table1.fc"].si
-    spec = RunSpec(nose, mass, vs, concrete.configured(refs, params.hjc),
-                   Settings.from_config(cfg, params.profile, float(params.size)),
-                   TargetSpec("semi_infinite", cfg["target_radius"]), expected_depth(nose, mass, vs, fc, rho))
+    spec = run_spec(nose, mass, vs, concrete.configured(refs, params.hjc),
+                    Settings.from_config(cfg, params.profile, float(params.size)),
+                    TargetSpec("semi_infinite", cfg["target_radius"]), expected_depth(nose, mass, vs, fc, rho))
     _calibrate_on_do1(
         outputs, spec, depth,
         (spec.nose, spec.mass, spec.velocity, depth, spec.material, spec.settings, spec.target, spec.expected_depth),
@@ -111,17 +112,16 @@ def calibrate_fe_strength_do1(inputs, outputs, params):
     refs = reference.load_reference(inputs.reference)
     sc = scene_from_inputs(inputs, FE)
     cfg = params.cfg
-    target = TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])
+    target = scene_target(sc, cfg)
     if target.formulation != "erosion_free":
         raise ValueError(f"{sc.name}: a strength-scale calibration needs an erosion_free target (fe.formulation), "
                          f"not {target.formulation}")
     nose = read_inference(inputs.do1)["nose"]
     mass, vs, depth = do1_shot(refs, params.shot)
-    switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
-    material = lambda k: concrete.configured(refs, params.hjc, strength_scale=k, **switches)
+    material, switches = scene_concrete(sc, refs, params.hjc)
     settings = scene_settings(sc, cfg, params.profile)
-    spec = RunSpec(nose, mass, vs, material(1.0), settings, target,
-                   expected_depth(nose, mass, vs, refs["table1.fc"].si, refs["table1.rho"].si), sc.friction)
+    spec = run_spec(nose, mass, vs, material(1.0), settings, target,
+                    expected_depth(nose, mass, vs, refs["table1.fc"].si, refs["table1.rho"].si), sc.friction)
     _calibrate_on_do1(
         outputs, spec, depth,
         (spec.nose, spec.mass, spec.velocity, depth, switches, spec.settings, spec.target, spec.expected_depth),

@@ -15,7 +15,8 @@ from ..constitutive import Elastic, VonMises
 from ..contact import Projectile
 from ..mesh import Grid, MeshSpec, body_outline, build, polar
 from ..model import Controls, Model
-from ..rezone import R_MOVED
+from ..erosion_free.controls import ErosionFree
+from ..erosion_free.rezone import R_MOVED
 from ..solver import run
 from . import chain_reference, closed_forms as cf
 from .cavity_reference import wall_stress
@@ -60,12 +61,12 @@ def _rezoned_checks(name, m):
     return [Check(name, "node moves made by the rezones", moves, math.nan, 1.0, math.inf, "1",
                   ">= 1: the rezoning acted"),
             _below(name, "|kinetic energy changed by the remap| / (kinetic + internal energy)",
-                   abs(m.E_remap) / scale, 1e-3, "1", "conservation (small: the velocity remap is not exactly conservative, fe.rezone)")]
+                   abs(m.E_remap) / scale, 1e-3, "1", "conservation (small: the velocity remap is not exactly conservative, fe.erosion_free.rezone)")]
 
 
 # the erosion-free target's rezoning forced on every node of a problem's zone, every 5 steps (a node moves half-way to
 # its elements' area-weighted centre whatever its elements' shape): material flows through the mesh all the time
-REZONED = dict(erosion_free=True, rezone_quality=1.0)
+REZONED = dict(erosion_free=ErosionFree(rezone_quality=1.0))
 REZONED_NAME = ", rezoned every 5 steps (the erosion-free target's remap)"
 
 

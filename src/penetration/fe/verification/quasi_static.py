@@ -18,6 +18,7 @@ import numpy as np
 from ...concrete.hjc import HJC
 from ...nose.geometry import Ogive
 from ..contact import Projectile
+from ..erosion_free.controls import ErosionFree
 from ..mesh import MeshSpec, body_outline, build
 from ..model import Controls, Model
 from ..solver import Unstable, run
@@ -39,9 +40,8 @@ def driven_ogive(across: float, hole: float, v: float, material: HJC | None = No
     zeta, rho = body_outline(Ogive(PSI, a), 20 * a)
     end = TRAVEL * a / v
     g = build(MeshSpec(a / across, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
-    m = Model(g, material or HJC(), Controls(erosion_free=True, guard=True, drop_free_nodes=False,
-                                            rezone_radius=8 * a, eject_height=a, crater_depth=crater_depth,
-                                            pilot_guide=guide,
+    free = ErosionFree(rezone_radius=8 * a, eject_height=a, crater_depth=crater_depth, pilot_guide=guide)
+    m = Model(g, material or HJC(), Controls(erosion_free=free, guard=True, drop_free_nodes=False,
                                             lateral="non_reflecting", bottom="non_reflecting", end_time=end,
                                             output_interval=end / outputs))
     return m, Projectile(zeta, rho, 1e6, 0.0, v)

@@ -24,7 +24,7 @@ What the nose throws out above the struck face (a lip of fully damaged concrete 
 ejected, not rezoned: before each rezone ``eject`` marks the elements above the face that have become thinner than
 a share of the element size or nearly inverted, or that have flown farther than a set height above it (a length
 of the shot, not of the mesh), and the guard those that invert between rezones; both are booked
-as ejecta by ``fe.erosion.retire`` (no stress from then on, their mass and momentum kept on their nodes). An element
+as ejecta by ``fe.erosion_free.debris`` (no stress from then on, their mass and momentum kept on their nodes). An element
 that loses its shape inside the target stops the run.
 """
 from __future__ import annotations
@@ -32,8 +32,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .element import area2, corner_jacobians, length as element_length, moment
-from .state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, QV, SRR, SRZ, STT, SZZ, TWO_PI, V0,
+from ..element import area2, corner_jacobians, length as element_length, moment
+from ..state import (ACTIVE, DMG, EPSEFF, EPSP, ERODING, IE, LIVE, MASS, MUMAX, MUP, QV, SRR, SRZ, STT, SZZ, TWO_PI, V0,
                     VR, VZ, P)
 
 # the element fields carried per unit mass (IE is carried as specific energy, MASS is the conserved quantity)
@@ -126,7 +126,7 @@ def _thin(X, nr, e, length):
 
 @njit(cache=True)
 def eject(zone, X, alive, length, height, crater, out):
-    """Mark for ejection (ERODING; ``fe.erosion.retire`` books them as ejecta) the live elements of the window's rows
+    """Mark for ejection (ERODING; ``fe.erosion_free.debris`` books them as ejecta) the live elements of the window's rows
     whose centre lies above the struck face (z < 0) and that are thinner than ``length`` or nearly inverted, or
     whose centre has flown more than ``height`` above it: the lip the nose throws out, which would otherwise set the
     time step. With ``crater`` > 0 (m), those thinner than ``length`` or nearly inverted whose centre lies less than
