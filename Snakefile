@@ -23,7 +23,8 @@
 from pathlib import Path
 
 from penetration.pipeline.config import check_config, check_config_files, load_check
-from penetration.pipeline.dispatch import fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input, study_input, task, uncommitted
+from penetration.pipeline.dispatch import (fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input,
+                                          study_input, study_outputs, task, uncommitted)
 from penetration.levels import LEVELS
 from penetration.pipeline.scenes import scene_names
 from penetration.tasks.reference import checked_outputs
@@ -117,6 +118,7 @@ include: "workflow/rules/cavity.smk"
 include: "workflow/rules/cavity_studies.smk"
 include: "workflow/rules/contrasts.smk"
 include: "workflow/rules/fe.smk"
+include: "workflow/rules/fe_studies.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/reference.smk"
 
@@ -131,46 +133,12 @@ REPORT_INPUTS = [
     expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
 ]
 
-# The studies' outputs (`snakemake -c2 studies`, `make studies`): committed, read by the report from disk, compared by
-# `make check-studies` (config check.studies). Built at the full profile (the ci profile's Table 3 joins the
-# convergence over meshes and accuracy against cost; the validation on the development shots runs at both).
-STUDY_OUTPUTS = [
-    "figures/ablation_cavity.csv", "figures/timing/ablation_cavity.csv", "figures/do1_family_sensitivity.csv",
-    "figures/cavity_table3_sensitivity.png", "figures/cavity_table3_sensitivity.csv",
-    "figures/cavity_variant_contrasts.csv",
-    "figures/accuracy_trajectory.csv", "figures/timing/accuracy_trajectory.png", "figures/timing/accuracy_trajectory.csv",
-    "figures/accuracy_cavity.csv", "figures/timing/accuracy_cavity.png", "figures/timing/accuracy_cavity.csv",
-    "figures/fe/full/window.csv", "figures/fe/full/window_summary.csv", "figures/timing/fe_window_full.csv",
-    "figures/timing/fe_mesh_study_full.png", "figures/timing/fe_mesh_study_full.csv",
-    "figures/fe/contrast_convergence.png", "figures/fe/contrast_convergence.csv",
-    "figures/fe/contrast_ensemble.png", "figures/fe/contrast_ensemble.csv", "figures/fe/contrast_ensemble_depths.csv",
-    "figures/fe/contrast_band.png", "figures/fe/contrast_band.csv", "figures/fe/contrast_band_depths.csv",
-    "figures/fe/contrast_band_meshes.csv", "figures/fe/contrast_extrapolation.png", "figures/fe/contrast_extrapolation.csv",
-    "figures/fe/contrast_extrapolation_depths.csv",
-    "figures/fe/erosion_free/convergence.png", "figures/fe/erosion_free/convergence.csv",
-    "figures/fe/erosion_free/convergence_shots.csv", "figures/fe/erosion_free/convergence_holes.csv",
-    "figures/timing/fe_erosion_free_convergence.csv",
-    "figures/fe/erosion_free/quasi_static.csv", "figures/fe/erosion_free/quasi_static_runs.csv",
-    "figures/fe/erosion_free/calibrated.csv", "figures/fe/erosion_free/calibration.csv",
-    *[f"figures/fe/erosion_free/window_{shot}{part}.csv" for shot in config["fe_erosion_free"]["window"]["shots"]
-      for part in ("", "_summary")],
-    *[f"figures/timing/fe_erosion_free_window_{shot}.csv" for shot in config["fe_erosion_free"]["window"]["shots"]],
-    "figures/fe/rear_face.png", "figures/fe/rear_face.csv",
-    "figures/fe/rear_face_members.csv", "figures/fe/rear_face_effects.csv", "figures/accuracy_cost.csv",
-    "figures/timing/accuracy_cost.csv", "figures/timing/accuracy_cost.png", "figures/accuracy_prediction.csv",
-    # the cavity level calibrated on the laboratory shots, each fold scored out of sample
-    "figures/calibration_cavity_laboratory.csv", "figures/validation_cavity_laboratory.csv",
-    "figures/calibration_cavity_laboratory_grid.csv", "figures/timing/calibration_cavity_laboratory.csv",
-    "figures/do1_test.csv",
-    # the fe level's failure strain calibrated on the laboratory shots likewise, at both meshes
-    *[f"figures/{path}".format(profile=profile) for profile in ("full", "ci")
-      for path in ("fe/{profile}/calibration_fe_laboratory.csv", "fe/{profile}/validation_fe_laboratory.csv",
-                   "fe/{profile}/calibration_fe_laboratory_grid.csv", "timing/calibration_fe_laboratory_{profile}.csv")],
-    # every level on the 25 development shots (the validated accuracy the command line reports), at both meshes
-    *expand("figures/fe/{profile}/validation_levels.png", profile=["full", "ci"]),
-    *expand("figures/timing/validation_levels_{profile}.csv", profile=["full", "ci"]),
-    *CHECK_STUDIES,
-]
+# The studies' outputs (`snakemake -c2 studies`, `make studies`), listed once in workflow/studies.yaml: committed, read
+# by the report from disk, compared by `make check-studies` (their classes: `studies` in workflow/check.yaml).
+RESEARCH = study_outputs("workflow/studies.yaml", "workflow/schemas/studies.schema.json", {
+    "profile": ["full", "ci"], "band": BAND_PROFILES, "shot": list(config["fe_erosion_free"]["window"]["shots"]),
+    "fs": [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]]}, CHECK_STUDIES)
+STUDY_OUTPUTS = [path for paths in RESEARCH.values() for path in paths]
 
 
 include: "workflow/rules/report.smk"

@@ -43,8 +43,14 @@ def table(frame, **kw):
     display(HTML(frame.to_html(index=False, na_rep="", float_format=lambda x: f"{x:.4g}", **kw)))
 
 
+STUDY_OUTPUTS = set(json.loads(os.environ["PENETRATION_STUDIES"]))  # the studies' outputs (workflow/studies.yaml)
+
+
 def study(path):
-    """A study's committed output (`make studies` builds it; the paper's rebuild reads it from disk)."""
+    """A study's committed output (`make studies` builds it; the paper's rebuild reads it from disk), one that
+    workflow/studies.yaml lists."""
+    if f"figures/{path}" not in STUDY_OUTPUTS:
+        raise KeyError(f"figures/{path}: not an output of a study listed in workflow/studies.yaml")
     path = FIG / path
     if not path.exists():
         raise FileNotFoundError(f"{path}: a study's output the report shows is missing; build it with `make studies`")

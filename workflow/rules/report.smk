@@ -9,7 +9,7 @@ rule report:
            fits=[GEOMETRY_RESULTS["do1"], "results/calibration/do1.json", "results/calibration/cavity_do1.json",
                  "results/geometry/diameter_450kg.json", "results/scenes/sec22_450kg.csv"],
     output: html="figures/report.html",
-    params: profile=config["fe_profile"], timeout_s=600,
+    params: profile=config["fe_profile"], timeout_s=600, studies=STUDY_OUTPUTS,
     threads: 1
     resources: mem_mb=2000, runtime=15
     benchmark: "results/benchmarks/report.tsv"

@@ -154,6 +154,34 @@ def load_studies(folder, schema_path) -> dict:
     return studies
 
 
+def study_outputs(path, schema_path, values, checked=()) -> dict:
+    """The research studies' committed outputs by study (``path``: workflow/studies.yaml, checked against its schema),
+    each pattern expanded over the ``values`` of its placeholders (name -> list of values); a placeholder without
+    values is refused, naming the study and the pattern, and so is an output of ``checked`` (the reproduction check's
+    studies) that no study lists."""
+    import itertools
+    import string
+
+    studies = config.load(path, schema_path)
+    out = {}
+    for name, study in studies.items():
+        paths = []
+        for pattern in study["outputs"]:
+            keys = [k for _, k, _, _ in string.Formatter().parse(pattern) if k]
+            unknown = sorted(set(keys) - set(values))
+            if unknown:
+                raise config.ConfigError(f"{path}: {name}.outputs: {pattern!r} names {unknown}; allowed placeholders: "
+                                         f"{sorted(values)}")
+            paths += [pattern.format(**dict(zip(keys, combo))) for combo in itertools.product(*(values[k] for k in keys))]
+        out[name] = paths
+    listed = {p for paths in out.values() for p in paths}
+    unlisted = sorted(set(checked) - listed)
+    if unlisted:
+        raise config.ConfigError(f"{path}: the reproduction check's studies name outputs no study lists: {unlisted}; "
+                                 f"allowed: the outputs of a study in {path}")
+    return out
+
+
 def fe_shot_owners(folder, schema_path) -> dict:
     """(scene, nose, velocity tag) -> the scene whose job computes that shot: the first scene, in name order, with
     the same shot of the same physics (everything of the scene file but its description, velocities and other

@@ -633,7 +633,17 @@ def quasi_static(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+def studies(read) -> str:
+    """The research studies as workflow/studies.yaml lists them: name, what each asks, its outputs (patterns)."""
+    import yaml
+
+    listed = yaml.safe_load(read("workflow/studies.yaml"))
+    lines = ["| study | what it asks | output patterns |", "|---|---|---|"]
+    lines += [f"| `{name}` | {s['what']} | {len(s['outputs'])} |" for name, s in listed.items()]
+    return "\n".join(lines) + "\n"
+
+
+BLOCKS = {"studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:

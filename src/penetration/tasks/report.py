@@ -1,7 +1,8 @@
 """The replication report: workflow/report.py (jupytext percent format) executed and rendered to one HTML file.
 
 Executed in a Python kernel (nbclient; no notebook server) in the pipeline's directory, with the FE mesh
-profile of the build and the levels' labels in the environment (PENETRATION_FE_PROFILE, PENETRATION_LEVELS); a cell that raises fails the rule.
+profile of the build, the levels' labels and the studies' outputs (workflow/studies.yaml) in the environment
+(PENETRATION_FE_PROFILE, PENETRATION_LEVELS, PENETRATION_STUDIES); a cell that raises fails the rule.
 Rendered without the code (a reader's document), every figure embedded and no script, stylesheet or font fetched
 from the network (nbconvert's lab template less its require.js, MathJax and mermaid loaders), so the file stands alone
 and reads the same offline. Its few equations are HTML text (sub- and superscripts, Unicode), which needs no
@@ -32,6 +33,7 @@ def report(inputs, outputs, params):
         cell.id = f"cell-{k}"
     os.environ["PENETRATION_FE_PROFILE"] = params.profile
     os.environ["PENETRATION_LEVELS"] = json.dumps(LABELS)
+    os.environ["PENETRATION_STUDIES"] = json.dumps(list(params.studies))
     NotebookClient(nb, timeout=params.timeout_s, kernel_name="python3",
                    resources={"metadata": {"path": os.getcwd()}}).execute()
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", []) if o.get("output_type") == "error"]
