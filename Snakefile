@@ -130,6 +130,7 @@ REPORT_INPUTS = [
     list(CHECK["outputs"]),
     "figures/diff_summary.md",
     expand("figures/fe/{profile}/{name}", profile=FE_PROFILES, name=FE_OUTPUTS),
+    expand("figures/fe/{profile}/claims.csv", profile=FE_PROFILES),
     expand("figures/timing/fe_do1_{profile}.json", profile=FE_PROFILES),
 ]
 

@@ -142,6 +142,15 @@ def test_fe_limit_rows_compare_the_extrapolated_increment_with_the_paper():
     assert r.status == "undecided"
 
 
+def with_verdict(row):
+    """A zero-hole row with the study's verdict columns (studies.grid.ranking_verdict, as hole_rows writes them)."""
+    from penetration.studies.grid import ranking_verdict
+    limit = str(row.get("limit_found", "True")) == "True"
+    verdict, basis = ranking_verdict(limit, row.get("ranking", ""), row.get("ls_ranking", "undecided"),
+                                     row.get("side_of_1", ""))
+    return {**row, "verdict": verdict, "verdict_basis": basis}
+
+
 @pytest.mark.parametrize("ratio, band, status, ranking", [(1.0686, 0.005, "reproduced", "reproduced"),
                                                           (1.0, 0.01, "deviates", "undecided"),
                                                           (1.05, 0.03, "undecided", "reproduced"),
@@ -158,6 +167,7 @@ def test_erosion_free_rows_judge_the_converged_contrast_and_the_ranking_on_its_b
     eroding = [{"contrast": "DO/CRH 4.5", "velocity_ms": 800, "ratio_at_zero_size": 1.147, "interval_low": 1.097,
                 "interval_high": 1.197}]
     table = [{"contrast": "DO/CRH 4.5", "velocity": 800, "cavity_ratio": 1.031, "analytic_stated_S_ratio": 1.014}]
+    row = with_verdict(row)
     inc, rank = erosion_free_rows(refs, [row, {**row, "quantity": "depth_m", "case": "crh3"}], eroding, table)
     assert inc.paper == refs["table3.inc_equiv.800.double_ogive"].value and inc.ours == pytest.approx(100 * (ratio - 1))
     assert inc.status == status and rank.status == ranking
@@ -172,7 +182,7 @@ def test_erosion_free_rows_read_the_csv_booleans_of_the_mesh_status(asymptotic, 
     row = {"quantity": "depth_ratio", "case": "DO/CRH 4.5", "velocity_ms": "800", "at_zero_hole": "1.05",
            "uncertainty": "0.01", "mesh_status_all_asymptotic": asymptotic, "meshes_stopped": stopped,
            "hole_status": "asymptotic", "ranking": "holds", "limit_found": "True"}
-    inc, _ = erosion_free_rows(refs, [row], [], [])
+    inc, _ = erosion_free_rows(refs, [with_verdict(row)], [], [])
     assert ("not all asymptotic" in inc.case) == (asymptotic == "False")
     assert ("a shot stopped" in inc.case) == (stopped == "True")
 
@@ -208,6 +218,7 @@ def test_erosion_free_rows_without_a_limit_give_the_spread_and_decide_nothing():
            "values_median": 1.10, "values_max": 1.16, "mesh_status_all_asymptotic": False, "hole_status": "oscillatory",
            "side_of_1": "above 1 on every mesh and hole", "ranking": "undecided", "ls_low": "", "ls_high": "",
            "ls_ranking": "undecided"}
+    row = with_verdict(row)
     eroding = [{"contrast": "CRH 4.5/CRH 3", "velocity_ms": 1200, "ratio_at_zero_size": 0.95, "interval_low": 0.9,
                 "interval_high": 1.0}]
     table = [{"contrast": "CRH 4.5/CRH 3", "velocity": 1200, "cavity_ratio": 1.041, "analytic_stated_S_ratio": 1.03}]
@@ -229,13 +240,15 @@ def test_erosion_free_rows_without_a_limit_are_judged_on_the_holes_least_squares
                                                                                         inc_status, rank_status):
     """No limit, but every hole has a least-squares interval: the increment is judged on their hull (the paper's
     CRH 4.5/CRH 3 at 1200 m/s, +5.9 %, outside the hull: deviates; inside: undecided) and the ranking on the
-    study's ls_ranking (above 1 at every hole: reproduced, at the holes run); the depth likewise on its hull."""
+    study's verdict on its ls_ranking (above 1 at every hole: reproduced, at the holes run); the depth likewise on
+    its hull."""
     from penetration.paper.diff import erosion_free_depth_rows, erosion_free_rows
     refs = load_reference(REF)
     row = {"quantity": "depth_ratio", "case": "CRH 4.5/CRH 3", "velocity_ms": 1200.0, "at_zero_hole": 1.02,
            "uncertainty": float("inf"), "limit_found": "False", "values": 12, "values_min": 1.072,
            "values_median": 1.10, "values_max": 1.16, "side_of_1": "above 1 on every mesh and hole",
            "ranking": "undecided", "ls_low": str(low), "ls_high": str(high), "ls_ranking": ls_ranking}
+    row = with_verdict(row)
     inc, rank = erosion_free_rows(refs, [row], [], [])
     assert refs["table3.inc_crh3.1200.crh45"].value == pytest.approx(5.87, abs=1e-9)
     assert inc.status == inc_status and rank.status == rank_status

@@ -117,3 +117,22 @@ def test_one_switch_between_the_eroding_and_the_erosion_free_target():
                       if isinstance(n, ast.Attribute) and n.attr == "formulation"})
     assert all(p in ("src/penetration/fe/spec.py", "src/penetration/fe/shot.py", "src/penetration/fe/level.py")
                or p.startswith(("src/penetration/tasks/", "workflow/")) for p in readers), readers
+
+
+VERDICT_WORDS = {"holds", "weaker", "fails", "matches", "misses", "cannot decide", "fitted to it", "good", "poor",
+                 "undecided", "reproduced", "deviates"}
+
+
+def test_one_verdict_per_claim():
+    """A claim's verdict is computed once: the paper's claims at every level by paper.claims (the task claims writes
+    them; the report lays them out), a contrast's ranking on the erosion-free target by studies.grid (its verdict
+    column; the diff, the docs and the claims read it). The study's columns the verdict rests on are read by no one
+    else, and no function of the report returns a verdict word."""
+    for name in ("least_gain", "gains_at_v", "do1", "smaller_peak", "predicts", "contrast_ranking", "claim_rows"):
+        assert _defines(name) == [("src/penetration/paper/claims.py", name)], name
+    assert _defines("ranking_verdict") == [("src/penetration/studies/grid.py", "ranking_verdict")]
+    assert _occurs(r"ls_ranking") == ["src/penetration/studies/grid.py"]
+    report = TREES["workflow/report.py"]
+    judging = sorted(f.name for f in ast.walk(report) if isinstance(f, ast.FunctionDef)
+                     for n in ast.walk(f) if isinstance(n, ast.Constant) and n.value in VERDICT_WORDS)
+    assert judging == []

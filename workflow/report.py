@@ -81,8 +81,6 @@ STATUSES = ["reproduced", "agrees-after-calibration", "deviates", "undecided", "
 
 # %%
 PAPER_VALUE = pd.read_csv("workflow/reference/paper_values.csv").set_index("id")
-GOAL_POINTS = 2  # a depth ratio within 2 points of the paper's simulated one: the criterion of the conclusions below
-VALIDATION_GOAL = 0.10  # a level predicts well when its median depth error is within 10 % (the summary's within_10pct)
 nc = pd.read_csv(FIG / "nose_contrasts_table.csv")
 band = pd.read_csv(study("fe/contrast_band.csv"))
 # a study of the finite-element contrasts extrapolated to zero element size; the bands of meshes when it is absent
@@ -96,21 +94,19 @@ validation = _validation[(_validation.calibration == "laboratory") | ~_validatio
 cavity_do1 = _validation[(_validation.level == "cavity") & (_validation.calibration == "do1")].iloc[0]
 LEVELS = json.loads(os.environ["PENETRATION_LEVELS"])  # level -> its label, the ladder in order (levels.LABELS)
 LEAST_GAIN = {"DO/CRH 4.5": "text.gain_pct_crh45", "DO/CRH 3": "text.gain_pct_crh3"}  # claimed least gains (%)
-GAIN_1200 = {"DO/CRH 4.5": "text.gain_1200_crh45", "DO/CRH 3": "text.gain_1200_crh3"}  # claimed gains (m)
-V_GAIN = int(PAPER_VALUE.case["text.gain_1200_crh45"])
 paper = PAPER_VALUE.value.astype(float)
+# every claim at every level, judged once by the pipeline (paper.claims; rule claims)
+claims = pd.read_csv(FIG / f"fe/{PROFILE}/claims.csv", keep_default_na=False)
+judged = claims[claims.level.isin(list(LEVELS))]
+CLAIMS = list(dict.fromkeys(judged.claim_id))
+CLAIM_TEXT = dict(zip(judged.claim_id, judged.claim))
+verdicts = {cid: {r.level: (r.verdict, r.evidence, r.value) for r in judged[judged.claim_id == cid].itertuples()}
+            for cid in CLAIMS}
+GOAL_POINTS = 2  # a depth ratio within 2 points of the paper's simulated one (paper.claims.GOAL_POINTS)
 
 
 def pct(ratio):
     return f"{100 * (ratio - 1):+.1f} %"
-
-
-def only(frame, pick):
-    """The one row of a diff picked by the boolean `pick` (an output whose rows changed fails the report here)."""
-    rows = frame[pick]
-    if len(rows) != 1:
-        raise ValueError(f"{len(rows)} rows where the bottom line reads one: {rows.case.tolist()}")
-    return rows.iloc[0]
 
 
 def mesh_spread(contrast, velocities=None):
@@ -120,119 +116,13 @@ def mesh_spread(contrast, velocities=None):
     return 100 * (row.max_ratio - row.min_ratio), row
 
 
-def least_gain(level, contrast):
-    """'At least g % deeper at every velocity': the level's smallest depth ratio over Table 3's velocities."""
-    claimed = 1 + paper[LEAST_GAIN[contrast]] / 100
-    if level == "fe":
-        return fe_least_gain(contrast, claimed)
-    rows = nc[nc.contrast == contrast]
-    low = rows.loc[rows[f"{level}_ratio"].idxmin()]
-    ratio = low[f"{level}_ratio"]
-    return ("holds" if ratio >= claimed else "weaker" if ratio > 1 else "fails"), f"{pct(ratio)} at {low.velocity:.0f} m/s"
-
-
-def fe_least_gain(contrast, claimed):
-    """The same claim from the zero-size intervals (or, without them, the spread of one mesh size: no verdict)."""
-    if extrapolation is None:
-        return "cannot decide", f"meshes of one size spread it over {mesh_spread(contrast)[0]:.0f} pts"
-    rows = extrapolation[extrapolation.contrast == contrast]
-    straddle = rows[(rows.interval_low < claimed) & (rows.interval_high >= claimed)]
-    if (rows.interval_low >= claimed).all():
-        word, row = "holds", rows.loc[rows.interval_low.idxmin()]
-    elif (rows.interval_high < claimed).any():
-        row = rows.loc[rows.interval_high.idxmin()]
-        word = "weaker" if row.interval_high > 1 else "fails"
-    else:
-        word, row = "cannot decide", straddle.loc[(straddle.interval_high - straddle.interval_low).idxmax()]
-    return word, f"{pct(row.interval_low)} to {pct(row.interval_high)} at zero element size ({row.velocity_ms:.0f} m/s)"
-
-
-def gains_at_v(level):
-    """The claimed gains in metres at V_GAIN: the level's depth ratios within GOAL_POINTS of the paper's."""
-    if level == "fe":
-        return fe_gains_at_v()
-    rows = nc[(nc.velocity == V_GAIN) & nc.contrast.isin(list(GAIN_1200))].set_index("contrast").loc[list(GAIN_1200)]
-    off = 100 * (rows[f"{level}_ratio"] - rows.paper_sim_ratio).abs()
-    return ("matches" if (off <= GOAL_POINTS).all() else "misses"), " and ".join(f"{g:+.2f} m" for g in rows[f"{level}_gain_m"])
-
-
-def fe_gains_at_v():
-    if extrapolation is None:
-        spread = max(mesh_spread(c, [V_GAIN])[0] for c in GAIN_1200)
-        return "cannot decide", f"meshes of one size spread them over up to {spread:.0f} pts"
-    rows = extrapolation[(extrapolation.velocity_ms == V_GAIN)].set_index("contrast").loc[list(GAIN_1200)]
-    half = 50 * (rows.interval_high - rows.interval_low)
-    word = ("misses" if not rows.paper_inside_interval.astype(bool).all()
-            else "matches" if (half <= GOAL_POINTS).all() else "cannot decide")
-    return word, "zero-size intervals " + " and ".join(f"±{h:.0f} pts" for h in half)
-
-
-CALIBRATED = {"cavity": "strength scale", "fe": "failure strain fs"}  # the levels whose DO1 depth is fitted
-
-
-def do1_depth(level):
-    """The DO1 depth of Eq 9 or the trajectory with the paper's own S, and its deviation from the shot."""
-    row = (only(diff, (diff.item == "fig15") & (diff.quantity == "pd_over_d") & diff.case.str.contains("S = 72"))
-           if level == "analytic" else only(diff, (diff.item == "table2") & diff.case.str.contains("trajectory; S = 72")))
-    depth = float(row.ours) / float(row.paper) * paper["table2.dop"]
-    return depth, depth / paper["table2.dop"] - 1
-
-
-def do1(level):
-    """The DO1 shot: the depth with the paper's own S (Eq 9, trajectory) or the parameter fitted to it."""
-    if level == "cavity":
-        return "fitted to it", f"strength × {json.loads((RES / 'calibration/cavity_do1.json').read_text())['strength_scale']:.2f}"
-    if level == "fe":
-        fit = pd.read_csv(FIG / f"fe/{PROFILE}/calibration_fe_do1.csv").iloc[0]
-        return "fitted to it", f"fs = {fit.value:.2f} at {1e3 * fit.element_size_m:.2f} mm"
-    depth, dev = do1_depth(level)
-    return ("matches" if abs(dev) <= PAPER_VALUE.tol["table2.dop"] else "misses"), f"{depth:.2f} m ({100 * dev:+.0f} %) with the paper's S"
-
-
-PEAKS = {"trajectory": ("fig08", ""), "cavity": ("fig14", "(cavity level)"), "fe": ("fig14", "(FE level)")}
-
-
-def peak_margin(level):
-    """The double ogive's peak deceleration relative to the other noses', its largest (least negative) value."""
-    frame, (item, tag) = (fe_diff if level == "fe" else diff), PEAKS[level]
-    rows = frame[(frame.item == item) & frame.quantity.str.startswith("peak_deceleration_double_ogive_minus")
-                 & frame.case.str.contains(tag, regex=False)]
-    return rows.ours.astype(float).max()
-
-
-def smaller_peak(level):
-    if level not in PEAKS:
-        return "—", "no deceleration history"
-    worst = peak_margin(level)
-    word = ("holds" if worst < 0 else "fails") + (" on one mesh" if level == "fe" else "")
-    return word, f"{-100 * worst:.1f} % lower at least" if worst < 0 else f"{100 * worst:+.1f} % higher at worst"
-
-
-def predicts(level):
-    err = validation.median_abs_rel_err[level]
-    return ("good" if err <= VALIDATION_GOAL else "poor"), f"median error {100 * err:.0f} %"
-
-
-v_lo, v_hi = nc.velocity.min(), nc.velocity.max()
-CLAIMS = [
-    (f"The double ogive goes at least {paper['text.gain_pct_crh45']:g} % deeper than the CRH 4.5 ogive of the same "
-     f"nose length, at every velocity ({v_lo}–{v_hi} m/s)", lambda lv: least_gain(lv, "DO/CRH 4.5")),
-    (f"… and at least {paper['text.gain_pct_crh3']:g} % deeper than the CRH 3 ogive", lambda lv: least_gain(lv, "DO/CRH 3")),
-    (f"At {V_GAIN} m/s it goes {paper['text.gain_1200_crh45']:.2f} m deeper than the CRH 4.5 ogive and "
-     f"{paper['text.gain_1200_crh3']:.2f} m deeper than the CRH 3 ogive", gains_at_v),
-    (f"Theory and simulation match the DO1 shot, {paper['table2.dop']:g} m at {paper['table2.velocity']:g} m/s",  do1),
-    ("The double ogive has the smallest peak deceleration (Figs 8 and 14)", smaller_peak),
-    (f"<i>Ours, not the paper's:</i> each level predicts the {validation.shots['analytic']} published shots it was not "
-     f"fitted to (median depth error within {100 * VALIDATION_GOAL:.0f} %)", predicts),
-]
-verdicts = {claim: {lv: judge(lv) for lv in LEVELS} for claim, judge in CLAIMS}
-bottom = pd.DataFrame([{"claim": claim, **{name: f"<b>{verdicts[claim][lv][0]}</b>: {verdicts[claim][lv][1]}"
-                                          for lv, name in LEVELS.items()}} for claim, _ in CLAIMS])
+bottom = pd.DataFrame([{"claim": CLAIM_TEXT[cid], **{name: f"<b>{verdicts[cid][lv][0]}</b>: {verdicts[cid][lv][1]}"
+                                                    for lv, name in LEVELS.items()}} for cid in CLAIMS])
 display(HTML(bottom.to_html(index=False, escape=False)))
 
 # %%
 def smallest_gains(level):
-    return " and ".join(pct(nc[nc.contrast == c][f"{level}_ratio"].min()) for c in LEAST_GAIN)
+    return " and ".join(pct(float(verdicts[cid][level][2])) for cid in ("least_gain_crh45", "least_gain_crh3"))
 
 
 def and_list(items):
@@ -241,7 +131,7 @@ def and_list(items):
 
 
 RIGID = ("analytic", "trajectory", "cavity")
-words = {verdicts[c][lv][0] for c, _ in CLAIMS[:2] for lv in RIGID}
+words = {verdicts[c][lv][0] for c in CLAIMS[:2] for lv in RIGID}
 opening = {frozenset({"weaker"}): "the double ogive goes deeper than both ogives, but by less than the paper claims",
            frozenset({"holds"}): "the double ogive goes deeper than both ogives by at least what the paper claims"}.get(
     frozenset(words), "the verdicts on the claimed gains differ")
@@ -250,14 +140,15 @@ s_gains = (f"With Eq 9, the trajectory and the cavity level {opening}: the small
            f"{smallest_gains('cavity')} (cavity), against the claimed "
            f"{and_list(f'{paper[k]:+g} %' for k in LEAST_GAIN.values())}.")
 
-depth, dev = do1_depth("analytic")
+depth = float(verdicts["do1"]["analytic"][2])
+dev = depth / paper["table2.dop"] - 1
 s_do1 = (f"Eq 9 with the paper's own S gives {depth:.2f} m for the {paper['table2.dop']:g} m DO1 shot ({100 * dev:+.0f} %); "
          f"the levels that match it do so because one parameter was fitted to that shot (Eq 9's S, the cavity level's "
          f"strength scale, the finite elements' failure strain), so their depths confirm nothing and the contrasts "
          f"between noses are the test.")
 
 spreads = {c: mesh_spread(c) for c in LEAST_GAIN}
-fe_words = {verdicts[c]["fe"][0] for c, _ in CLAIMS[:3]}
+fe_words = {verdicts[c]["fe"][0] for c in CLAIMS[:3]}
 s_fe = (f"The finite-element level {'cannot decide the contrasts' if fe_words == {'cannot decide'} else 'gives the verdicts of its column'}: "
         f"among meshes of nearly one size (bands around {and_list(str(int(n)) for n in sorted(band.centre_elements_across.unique()))} "
         f"elements across the shank radius) the {and_list(LEAST_GAIN)} ratios move by up to "
@@ -281,17 +172,8 @@ def found(r):
     return str(r.limit_found) == "True"
 
 
-def ranking(rows):
-    """The paper's ranking (the ratio above 1) over a contrast's rows: holds when every band is above 1 (with a
-    limit), and without one is undecided, saying on which side of 1 every mesh's and hole's value lies."""
-    if all(found(r) for r in rows.itertuples()):
-        verdicts = set(rows.ranking)
-        return verdicts.pop() if len(verdicts) == 1 and "undecided" not in verdicts else "is undecided"
-    ls = set(rows.ls_ranking)
-    if len(ls) == 1 and (verdict := ls.pop()) != "undecided":
-        return f"{verdict} run, on the least-squares intervals of the meshes (no limit under refinement)"
-    sides = set(rows.side_of_1)
-    return f"is undecided without a limit ({sides.pop() if len(sides) == 1 else 'on both sides of 1'})"
+# the paper's ranking of each contrast on the erosion-free target, as the claims judge it
+free_ranking = {r.claim_id.removeprefix("ranking "): r.evidence for r in claims[claims.level == "erosion_free"].itertuples()}
 
 
 def free_cells(rows):
@@ -304,7 +186,7 @@ s_free = ("On an erosion-free target (no element deleted; Table 1's HJC as state
           f"{free_meshes} meshes and {free_holes} pilot holes) the ratios, where the refinement finds no limit given as the range of "
           f"every mesh's and hole's value, are "
           + "; ".join(f"{c} {free_cells(g)} (paper {and_list(f'{x:.3f}' for x in g.paper_simulated)}): the paper's "
-                      f"ranking {ranking(g)}" for c, g in free_ratios.groupby("case", sort=False))
+                      f"ranking {free_ranking[c]}" for c, g in free_ratios.groupby("case", sort=False))
           + ".")
 
 s_valid = (f"On the {validation.shots['analytic']} published shots, each level scored on shots it was not fitted to, "
@@ -317,13 +199,13 @@ s_valid = (f"On the {validation.shots['analytic']} published shots, each level s
               else "with the DO1 failure strain, by ")
            + f"{100 * validation.median_abs_rel_err['fe']:.0f} %.")
 
-peak = {lv: verdicts[CLAIMS[4][0]][lv] for lv in PEAKS}
-if all(w.startswith("holds") for w, _ in peak.values()):
-    least = max(PEAKS, key=peak_margin)
+peak = {lv: v for lv, v in verdicts["smaller_peak"].items() if v[0] != "—"}   # the levels that compute it
+if all(w.startswith("holds") for w, _, _ in peak.values()):
+    least = max(peak, key=lambda lv: float(peak[lv][2]))
     s_peak = (f"The double ogive's smaller peak deceleration holds at every level that computes it, by as little as "
-              f"{-100 * peak_margin(least):.1f} % ({LEVELS[least]}{', one mesh' if least == 'fe' else ''}).")
+              f"{-100 * float(peak[least][2]):.1f} % ({LEVELS[least]}{', one mesh' if least == 'fe' else ''}).")
 else:
-    s_peak = "The double ogive's smaller peak deceleration: " + "; ".join(f"{LEVELS[lv]} {w} ({n})" for lv, (w, n) in peak.items()) + "."
+    s_peak = "The double ogive's smaller peak deceleration: " + "; ".join(f"{LEVELS[lv]} {w} ({n})" for lv, (w, n, _) in peak.items()) + "."
 
 display(HTML("<p>" + " ".join([s_gains, s_do1, s_fe, s_free, s_valid, s_peak]) + "</p>"))
 display(HTML(

@@ -32,6 +32,20 @@ rule diff:
     script: "../scripts/run_task.py"
 
 
+# Every claim of the paper judged at every level, once (the report lays it out): at the FE profile built.
+use rule diff as claims with:
+    input: **task("tasks.reference"), reference=config["reference"], contrasts="figures/nose_contrasts_table.csv",
+           diff="figures/diff.csv", fe_diff="figures/fe/{profile}/diff.csv",
+           fe_calibration="figures/fe/{profile}/calibration_fe_do1.csv", cal_cavity="results/calibration/cavity_do1.json",
+    output: csv="figures/fe/{profile}/claims.csv",
+    params: band=study_input("figures/fe/contrast_band.csv"),
+            extrapolation=study_input("figures/fe/contrast_extrapolation.csv"),
+            validation=lambda w: study_input(f"figures/fe/{w.profile}/validation_levels_summary.csv"),
+            erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
+    benchmark: "results/benchmarks/claims_{profile}.tsv"
+    log: "results/logs/claims_{profile}.log",
+
+
 use rule diff as reproduce_check with:
     input: **task("tasks.reference"), outputs=list(CHECK["outputs"]), diff="figures/diff.csv",
     output: report="results/check/reproduce_check.txt",

@@ -323,13 +323,13 @@ def erosion_free(read) -> str:
         ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
         lo, med, hi = (float(r[k]) for k in ("values_min", "values_median", "values_max"))
         if r["limit_found"] == "True":
-            value, rank = f"{ratio:.3f} +- {band:.3f}", r["ranking"]
+            value = f"{ratio:.3f} +- {band:.3f}"
         else:
             value = f"no limit: {lo:.3f}-{hi:.3f}, median {med:.3f}"
             if r.get("ls_low"):
                 value += f"; least squares {float(r['ls_low']):.3f} to {float(r['ls_high']):.3f}"
-            rank = (r["ls_ranking"] + " (least squares)" if r.get("ls_ranking", "undecided") != "undecided"
-                    else "undecided: " + r["side_of_1"])
+        rank = {"limit": r["verdict"], "least squares": f"{r['verdict']} at every hole (least squares)"}.get(
+            r["verdict_basis"], f"{r['verdict']}: {r['verdict_basis']}")
         meshes = "asymptotic" if r["mesh_status_all_asymptotic"] == "True" else "not all asymptotic"
         if r["meshes_stopped"] == "True":
             meshes += "; a shot stopped"

@@ -211,6 +211,9 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
             band, limit, met = nan, False, False
             hole = {"hole_order": nan, "hole_order_coarse": nan, "hole_asymptotic_ratio": nan, "hole_status": STOPPED,
                     "at_zero_hole": nan, "hole_gci": nan, "hole_gci_relative": nan}
+        rank = "" if relative else ranking(hole["at_zero_hole"], band) if limit else "undecided"
+        side = "" if relative else side_of_one(spread["values_min"], spread["values_max"])
+        verdict, basis = ("", "") if relative else ranking_verdict(limit, rank, ls["ls_ranking"], side)
         rows.append({**row, **hole, "mesh_gci_largest": float(g.gci_fine.max()),
                      "mesh_gci_largest_relative": float(g.gci_fine_relative.max()),
                      "mesh_status_all_asymptotic": bool(np.all(np.isfinite(f)) and (g.status == MONOTONE).all()),
@@ -218,9 +221,10 @@ def hole_rows(conv: pd.DataFrame, goal_depth, goal_contrast) -> pd.DataFrame:
                      "gci_goal": goal, "goal_met": met, "uncertainty": band, "limit_found": limit, **spread,
                      # a contrast's verdict on the paper's ranking (the ratio above 1): on its limit where there is
                      # one, else undecided, with the side of 1 its values lie on
-                     "ranking": "" if relative else ranking(hole["at_zero_hole"], band) if limit else "undecided",
-                     "side_of_1": "" if relative else side_of_one(spread["values_min"], spread["values_max"]),
-                     **ls,
+                     "ranking": rank, "side_of_1": side, **ls,
+                     # the one verdict the diff, the docs and the claims read: on the limit, else on the holes'
+                     # least-squares hull, else undecided (its basis: the side of 1 of every mesh's and hole's value)
+                     "verdict": verdict, "verdict_basis": basis,
                      "paper_simulated": paper,
                      "paper_inside": bool(limit and np.isfinite(paper) and abs(paper - hole["at_zero_hole"]) <= band)})
     return pd.DataFrame(rows)
@@ -231,6 +235,17 @@ def side_of_one(low, high) -> str:
     the ratio above 1): the words of a contrast's ``side_of_1`` column."""
     return ("above 1 on every mesh and hole" if low > 1 else "below 1 on every mesh and hole" if high < 1
             else "on both sides of 1" if low < 1 < high else "reaching 1")
+
+
+def ranking_verdict(limit, rank, ls_ranking, side) -> tuple:
+    """(verdict, basis) of a contrast on the paper's ranking (the ratio above 1): on the limit at zero size and hole
+    where there is one (``rank``, basis "limit"); else on the hull of the holes' least-squares intervals where it lies
+    on one side of 1 at every hole (basis "least squares"); else undecided, the basis the side of 1 of every mesh's
+    and hole's value (``side``)."""
+    if limit:
+        return rank, "limit"
+    word = {"holds at every hole": "holds", "fails at every hole": "fails"}.get(ls_ranking)
+    return (word, "least squares") if word else ("undecided", side)
 
 
 def ranking(ratio, band) -> str:

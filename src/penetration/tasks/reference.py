@@ -29,7 +29,7 @@ import subprocess
 import numpy as np
 import pandas as pd
 
-from ..paper import diff as diff_rows, reference
+from ..paper import claims as claim_rows, diff as diff_rows, reference
 from ..pipeline.io import committed_study, load_json, task, write_csv, write_text
 
 
@@ -100,6 +100,22 @@ def diff(inputs, outputs, params):
     pending = sorted(set(refs) - refs.used)
     contrasts = pd.read_csv(inputs.contrast_table).to_dict("records")
     write_text(outputs.summary, diff_rows.summary(rows, findings, pending, contrasts))
+
+
+@task
+def claims(inputs, outputs, params):
+    """figures/fe/{profile}/claims.csv: every claim of the paper judged at every level (paper.claims), the one
+    place a claim's verdict is computed; the report lays it out."""
+    fe_calibration = pd.read_csv(inputs.fe_calibration)
+    if len(fe_calibration) != 1:
+        raise ValueError(f"{inputs.fe_calibration}: a DO1 calibration record has one row, found {len(fe_calibration)}")
+    evidence = claim_rows.Evidence(
+        paper=pd.read_csv(inputs.reference).set_index("id"), contrasts=pd.read_csv(inputs.contrasts),
+        diff=pd.read_csv(inputs.diff), fe_diff=pd.read_csv(inputs.fe_diff), band=committed_study(params.band),
+        extrapolation=committed_study(params.extrapolation), validation=committed_study(params.validation),
+        cavity_scale=float(load_json(inputs.cal_cavity)["strength_scale"]), fe_calibration=fe_calibration.iloc[0],
+        erosion_free=committed_study(params.erosion_free))
+    write_csv(pd.DataFrame(claim_rows.claim_rows(evidence), columns=claim_rows.COLUMNS), outputs.csv)
 
 
 # --------------------------------------------------------- reproduction check

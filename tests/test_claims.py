@@ -1,0 +1,87 @@
+"""The paper's claims judged at each level (paper.claims): the verdict rules against hand-made tables, and the whole
+table from the committed outputs against the bottom line of the committed report (made before the verdicts moved
+into the pipeline: an independent rendering of the same judgments)."""
+import html
+import json
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from penetration.levels import LEVELS
+from penetration.paper import claims as C
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _paper():
+    return pd.read_csv(ROOT / "workflow/reference/paper_values.csv").set_index("id")
+
+
+def _rows(*rows):
+    cols = ["verdict", "verdict_basis", "side_of_1"]
+    return pd.DataFrame([dict(zip(cols, r)) for r in rows])
+
+
+@pytest.mark.parametrize("rows, word, phrase", [
+    ([("holds", "limit", "above 1 on every mesh and hole")] * 2, "holds", "holds"),
+    ([("holds", "limit", "x"), ("undecided", "limit", "x")], "undecided", "is undecided"),
+    ([("holds", "least squares", "x"), ("holds", "limit", "x")], "holds",
+     "holds at every hole run, on the least-squares intervals of the meshes (no limit under refinement)"),
+    ([("fails", "least squares", "below 1 on every mesh and hole")] * 2, "fails",
+     "fails at every hole run, on the least-squares intervals of the meshes (no limit under refinement)"),
+    ([("holds", "least squares", "above 1 on every mesh and hole"),
+      ("undecided", "above 1 on every mesh and hole", "above 1 on every mesh and hole")], "undecided",
+     "is undecided without a limit (above 1 on every mesh and hole)"),
+    ([("undecided", "on both sides of 1", "on both sides of 1"), ("undecided", "limit", "reaching 1")], "undecided",
+     "is undecided without a limit (on both sides of 1)"),
+])
+def test_a_contrasts_ranking_is_the_consensus_of_its_velocities(rows, word, phrase):
+    assert C.contrast_ranking(_rows(*rows)) == (word, phrase)
+
+
+@pytest.mark.parametrize("low_ratio, word", [(1.06, "holds"), (1.03, "weaker"), (1.0, "fails"), (0.97, "fails")])
+def test_the_least_gain_holds_only_when_every_velocitys_ratio_reaches_the_claimed_one(low_ratio, word):
+    """The paper claims at least 5 % over the CRH 4.5 ogive (text.gain_pct_crh45): the level's smallest ratio over
+    the velocities decides."""
+    paper = _paper()
+    assert float(paper.value["text.gain_pct_crh45"]) == 5.0
+    contrasts = pd.DataFrame({"contrast": ["DO/CRH 4.5"] * 2, "velocity": [500, 1200],
+                              "cavity_ratio": [low_ratio, 1.10]})
+    ev = C.Evidence(paper, contrasts, None, None, None, None, None, 1.0, None, None)
+    verdict, evidence, value = C.least_gain(ev, "cavity", "DO/CRH 4.5")
+    assert verdict == word and value == low_ratio and evidence.endswith("at 500 m/s")
+
+
+def _committed_evidence(profile="full"):
+    fig = ROOT / "figures"
+    cavity = pd.read_csv(fig / "calibration_cavity_do1.csv")
+    return C.Evidence(
+        paper=_paper(), contrasts=pd.read_csv(fig / "nose_contrasts_table.csv"), diff=pd.read_csv(fig / "diff.csv"),
+        fe_diff=pd.read_csv(fig / f"fe/{profile}/diff.csv"), band=pd.read_csv(fig / "fe/contrast_band.csv"),
+        extrapolation=pd.read_csv(fig / "fe/contrast_extrapolation.csv"),
+        validation=pd.read_csv(fig / f"fe/{profile}/validation_levels_summary.csv"),
+        cavity_scale=float(cavity.value.iloc[0]),
+        fe_calibration=pd.read_csv(fig / f"fe/{profile}/calibration_fe_do1.csv").iloc[0],
+        erosion_free=pd.read_csv(fig / "fe/erosion_free/convergence_holes.csv"))
+
+
+def test_the_claims_from_the_committed_outputs_are_the_committed_reports_bottom_line():
+    """Every cell of the report's bottom line (verdict: evidence) and every ranking it states on the erosion-free
+    target, from the committed outputs of the full profile."""
+    rows = C.claim_rows(_committed_evidence())
+    report = html.unescape((ROOT / "figures/report.html").read_text())
+    judged = [r for r in rows if r["level"] in LEVELS]
+    assert len(judged) == 6 * len(LEVELS)
+    for r in judged:
+        assert f"<b>{r['verdict']}</b>: {r['evidence']}" in report, r
+    for r in rows[len(judged):]:
+        assert f"the paper's ranking {r['evidence']}" in report, r
+
+
+def test_the_claims_table_has_its_columns_and_a_value_where_one_number_decides():
+    rows = pd.DataFrame(C.claim_rows(_committed_evidence()), columns=C.COLUMNS)
+    assert list(rows.columns) == C.COLUMNS and rows.claim_id.nunique() == 6 + 3
+    peaks = rows[(rows.claim_id == "smaller_peak") & (rows.level != "analytic")]
+    assert peaks.value.notna().all() and (peaks.value < 0).all() == (peaks.verdict.str.startswith("holds")).all()
+    assert json.dumps(list(rows.level.unique())) == json.dumps([*LEVELS, "erosion_free"])
