@@ -136,3 +136,14 @@ def test_one_verdict_per_claim():
     judging = sorted(f.name for f in ast.walk(report) if isinstance(f, ast.FunctionDef)
                      for n in ast.walk(f) if isinstance(n, ast.Constant) and n.value in VERDICT_WORDS)
     assert judging == []
+
+
+def test_one_run_spec_assembly():
+    """A run spec is assembled in fe.level.run_spec only (a scene's shot, both DO1 calibrations, a user's shot, the
+    benchmarks): no other module of the package or the workflow constructs a RunSpec (workflow/records/ keeps the
+    scripts of past runs as they ran)."""
+    builds = sorted(path for path, tree in TREES.items() for n in ast.walk(tree) if isinstance(n, ast.Call)
+                    and getattr(n.func, "id", getattr(n.func, "attr", None)) == "RunSpec"
+                    and not path.startswith("workflow/records/"))
+    assert builds == ["src/penetration/fe/level.py"]
+    assert _defines("run_spec") == [("src/penetration/fe/level.py", "run_spec")]

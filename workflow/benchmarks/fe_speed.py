@@ -311,7 +311,8 @@ def main():
           f"({bytes_total / 2**20:.0f} MiB)")
     if args.do1:
         from penetration.fe import shot as fe_shot
-        from penetration.fe.shot import RunSpec, Settings, run_shot
+        from penetration.fe.level import run_spec
+        from penetration.fe.shot import Settings, TargetSpec, run_shot
         from penetration.pipeline.io import read_inference
 
         # the pipeline's DO1 shot (its element size, calibrated failure strain and mesh extent)
@@ -331,9 +332,8 @@ def main():
             return solver_run(model, projectile, callback=cb)
 
         fe_shot.run = run_with_snapshot
-        r = run_shot(RunSpec(nose, ref["mass"], ref["velocity"], HJC(),
-                             Settings(element_size=ref["element_size"]).with_failure_strain(ref["failure_strain"]),
-                             expected_depth=ref["expected_depth_m"]))
+        r = run_shot(run_spec(nose, ref["mass"], ref["velocity"], HJC(), Settings(element_size=ref["element_size"]),
+                              TargetSpec(), ref["expected_depth_m"], failure_strain=ref["failure_strain"]))
         fe_shot.run = solver_run
         print(f"DO1 state at t = {snap['t'] * 1e3:.1f} ms ({snap['window']} elements in the window, {snap['yielded']:.0%} of them "
               f"yielded so far, {snap['flowing']:.1%} of the live ones flowing or crushing in a step): "
