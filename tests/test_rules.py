@@ -206,7 +206,7 @@ def test_a_rule_whose_task_resolves_its_scene_declares_the_inferred_noses():
 def test_no_rule_takes_the_whole_config_as_a_param():
     """Snakemake re-runs a job whose params changed: a rule holding the whole config would re-run (validation_fe:
     minutes) after any edit of it, a figure's dpi included. Rules take the sections their tasks read
-    (Snakefile's cfg_slice)."""
+    (workflow/rules/common.smk's cfg_slice)."""
     import re
     text = "\n".join(p.read_text() for p in sorted((ROOT / "workflow/rules").glob("*.smk")))
     text += (ROOT / "Snakefile").read_text()

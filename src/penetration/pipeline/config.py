@@ -9,6 +9,7 @@ import json
 import math
 import os
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
 import jsonschema
@@ -427,3 +428,46 @@ def load_check(path, schema_path) -> dict:
     if bad:
         raise ConfigError("\n".join(bad))
     return check
+
+
+@dataclass(frozen=True)
+class MeshProfiles:
+    """The FE level's mesh profiles beyond ``full`` and ``ci`` (the studies' meshes), from a checked config:
+    ``convergence`` (fe_convergence.profiles: Table 3 again at finer meshes), ``bands`` (fe_band.bands: centre -> its
+    band's profiles, the mesh realisations of the FE nose contrasts), ``free`` (fe_erosion_free.profiles: the
+    erosion-free grid study's, coarse first) and ``extra`` (profile -> element size in m, every one of them)."""
+    convergence: list
+    bands: dict
+    free: list
+    extra: dict
+
+    @property
+    def band_profiles(self):
+        return [p for band in self.bands.values() for p in band]
+
+    def fe_slice(self, fe, profile):
+        """The ``fe`` config slice for a profile's jobs; a profile beyond full and ci joins its element size."""
+        if profile not in self.extra:
+            return fe
+        h = self.extra[profile]
+        return {**fe, "profiles": {**fe["profiles"], profile: {"element_size": h, "mesh_study_sizes": [h]}}}
+
+
+def mesh_profiles(cfg) -> MeshProfiles:
+    """The mesh profiles of a config checked by check_config (its element sizes computed), their names checked
+    to be distinct across the studies and each band centred on full or a convergence profile (ConfigError)."""
+    convergence = list(cfg["fe_convergence"]["profiles"])
+    bands = {centre: list(band) for centre, band in cfg["fe_band"]["bands"].items()}
+    members = [p for band in bands.values() for p in band]
+    free = list(cfg["fe_erosion_free"]["profiles"])
+    extra = {**cfg["fe_convergence"]["sizes"], **{p: h for band in cfg["fe_band"]["sizes"].values() for p, h in band.items()},
+             **cfg["fe_erosion_free"]["sizes"]}
+    if len(extra) != len(convergence) + len(members) + len(free):
+        raise ConfigError(f"fe_erosion_free.profiles {free}: names must differ from fe_convergence's and fe_band's")
+    for centre in bands:
+        if centre not in ["full", *convergence]:
+            raise ConfigError(f"fe_band.bands.{centre}: allowed centres full or a profile of fe_convergence.profiles "
+                              f"{convergence}")
+    if len(members) != len(set(members)) or set(members) & set(convergence):
+        raise ConfigError(f"fe_band.bands: profile names {members} must be distinct and not those of fe_convergence")
+    return MeshProfiles(convergence, bands, free, extra)
