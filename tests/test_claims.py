@@ -85,3 +85,11 @@ def test_the_claims_table_has_its_columns_and_a_value_where_one_number_decides()
     peaks = rows[(rows.claim_id == "smaller_peak") & (rows.level != "analytic")]
     assert peaks.value.notna().all() and (peaks.value < 0).all() == (peaks.verdict.str.startswith("holds")).all()
     assert json.dumps(list(rows.level.unique())) == json.dumps([*LEVELS, "erosion_free"])
+
+
+@pytest.mark.parametrize("profile", ["full", "ci"])
+def test_the_committed_claims_are_those_of_the_committed_outputs(profile):
+    """figures/fe/{profile}/claims.csv is what paper.claims makes of the outputs committed beside it."""
+    made = pd.DataFrame(C.claim_rows(_committed_evidence(profile)), columns=C.COLUMNS)
+    committed = pd.read_csv(ROOT / f"figures/fe/{profile}/claims.csv")
+    pd.testing.assert_frame_equal(made, committed, check_exact=False, rtol=1e-11)

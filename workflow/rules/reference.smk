@@ -36,7 +36,8 @@ rule diff:
 use rule diff as claims with:
     input: **task("tasks.reference"), reference=config["reference"], contrasts="figures/nose_contrasts_table.csv",
            diff="figures/diff.csv", fe_diff="figures/fe/{profile}/diff.csv",
-           fe_calibration="figures/fe/{profile}/calibration_fe_do1.csv", cal_cavity="results/calibration/cavity_do1.json",
+           fe_calibration="figures/fe/{profile}/calibration_fe_do1.csv",
+           cavity_calibration="figures/calibration_cavity_do1.csv",
     output: csv="figures/fe/{profile}/claims.csv",
     params: band=study_input("figures/fe/contrast_band.csv"),
             extrapolation=study_input("figures/fe/contrast_extrapolation.csv"),

@@ -633,6 +633,26 @@ def quasi_static(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def claims(read) -> str:
+    """The paper's claims judged at every level (the pipeline's figures/fe/full/claims.csv), one row a claim, one
+    column a level (its label), each cell the verdict and the number that decides it; then the paper's ranking of
+    each contrast on the erosion-free target."""
+    from ..levels import LABELS
+
+    path = "figures/fe/full/claims.csv"
+    rows = _rows(read, path)
+    ladder = [r for r in rows if r["level"] in LABELS]
+    order = list(dict.fromkeys(r["claim_id"] for r in ladder))
+    cell = {(r["claim_id"], r["level"]): f"**{r['verdict']}**: {r['evidence']}" for r in ladder}
+    text = {r["claim_id"]: r["claim"].replace("<i>", "*").replace("</i>", "*") for r in ladder}
+    lines = ["| claim | " + " | ".join(LABELS.values()) + " |", "|---" * (len(LABELS) + 1) + "|"]
+    lines += [f"| {text[c]} | " + " | ".join(cell[(c, lv)] for lv in LABELS) + " |" for c in order]
+    free = [f"{r['claim'].removesuffix(' (the paper' + chr(39) + 's ranking)')}: {r['evidence']}"
+            for r in rows if r["level"] == "erosion_free"]
+    return ("\n".join(lines) + "\n\nOn the erosion-free FE target (no element deleted, Table 1's HJC as stated; a study), the "
+            "paper's ranking of each contrast: " + "; ".join(free) + f" (`{path}`).\n")
+
+
 def studies(read) -> str:
     """The research studies as workflow/studies.yaml lists them: name, what each asks, its outputs (patterns)."""
     import yaml
@@ -643,7 +663,7 @@ def studies(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+BLOCKS = {"claims": claims, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:

@@ -102,18 +102,24 @@ def diff(inputs, outputs, params):
     write_text(outputs.summary, diff_rows.summary(rows, findings, pending, contrasts))
 
 
+def _one_row(path):
+    """The one row of a committed calibration record (its fitted value, the data, the residual)."""
+    table = pd.read_csv(path)
+    if len(table) != 1:
+        raise ValueError(f"{path}: a DO1 calibration record has one row, found {len(table)}")
+    return table.iloc[0]
+
+
 @task
 def claims(inputs, outputs, params):
     """figures/fe/{profile}/claims.csv: every claim of the paper judged at every level (paper.claims), the one
     place a claim's verdict is computed; the report lays it out."""
-    fe_calibration = pd.read_csv(inputs.fe_calibration)
-    if len(fe_calibration) != 1:
-        raise ValueError(f"{inputs.fe_calibration}: a DO1 calibration record has one row, found {len(fe_calibration)}")
+    fe_calibration, cavity_calibration = (_one_row(path) for path in (inputs.fe_calibration, inputs.cavity_calibration))
     evidence = claim_rows.Evidence(
         paper=pd.read_csv(inputs.reference).set_index("id"), contrasts=pd.read_csv(inputs.contrasts),
         diff=pd.read_csv(inputs.diff), fe_diff=pd.read_csv(inputs.fe_diff), band=committed_study(params.band),
         extrapolation=committed_study(params.extrapolation), validation=committed_study(params.validation),
-        cavity_scale=float(load_json(inputs.cal_cavity)["strength_scale"]), fe_calibration=fe_calibration.iloc[0],
+        cavity_scale=float(cavity_calibration.value), fe_calibration=fe_calibration,
         erosion_free=committed_study(params.erosion_free))
     write_csv(pd.DataFrame(claim_rows.claim_rows(evidence), columns=claim_rows.COLUMNS), outputs.csv)
 
