@@ -179,10 +179,10 @@ def test_an_erosion_free_shot_deletes_nothing_and_closes_its_energy_audit():
     r = run_shot(spec, keep_model=True)
     m = r.model
     assert r.status == "rest" and 0.5 < r.depth < 4.0
-    assert m.eroded_mass == 0.0 and not np.any(m.alive == S.ERODED)
+    assert m.ledger.eroded_mass == 0.0 and not np.any(m.alive == S.ERODED)
     ejected = np.flatnonzero(m.alive == S.EJECTED)
     assert np.all(m.z[m.conn[ejected]].mean(axis=1) < 4 * 0.07)    # the lip, or debris of the crater (4 a deep)
-    assert 0.0 <= m.crater_debris_mass <= m.ejected_mass
+    assert 0.0 <= m.ledger.crater_debris_mass <= m.ledger.ejected_mass
     kept = m.mass.sum()
     total = m.E[S.MASS].sum()
     assert kept == pytest.approx(total, rel=1e-12)   # the ejecta's mass is still on the nodes
@@ -231,7 +231,7 @@ def test_the_crater_wall_is_ejected_only_once_the_tip_is_past_crater_thin_after(
     zc = m.z[m.conn].mean(axis=1)
     ejected = np.flatnonzero(m.alive == S.EJECTED)
     assert ejected.size > 0 and np.all(zc[ejected] < 0.08)
-    assert m.crater_debris_mass == pytest.approx(m.E[S.MASS, ejected].sum(), rel=1e-12)
+    assert m.ledger.crater_debris_mass == pytest.approx(m.E[S.MASS, ejected].sum(), rel=1e-12)
 
 
 def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_deeper_inside():
@@ -254,9 +254,9 @@ def test_the_guard_ejects_the_lip_and_the_crater_debris_and_stops_on_an_element_
     m.alive[[lip, debris]] = S.ERODING
     assert retire(m) == 2
     assert m.alive[lip] == S.EJECTED and m.alive[debris] == S.EJECTED
-    assert m.crater_debris_mass == pytest.approx(m.E[S.MASS, debris], rel=1e-15)
-    assert m.ejected_mass == pytest.approx(m.E[S.MASS, [lip, debris]].sum(), rel=1e-15)
-    assert m.mass.sum() == total and m.eroded_mass == 0.0
+    assert m.ledger.crater_debris_mass == pytest.approx(m.E[S.MASS, debris], rel=1e-15)
+    assert m.ledger.ejected_mass == pytest.approx(m.E[S.MASS, [lip, debris]].sum(), rel=1e-15)
+    assert m.mass.sum() == total and m.ledger.eroded_mass == 0.0
     m.alive[deep] = S.ERODING
     with pytest.raises(InsideTarget, match=f"element {deep} "):
         retire(m)
@@ -290,8 +290,8 @@ def test_the_guard_ejects_a_wall_element_behind_the_tail_as_wall_debris_and_stop
     total = m.mass.sum()
     m.alive[wall] = S.ERODING
     assert retire(m) == 1
-    assert m.alive[wall] == S.EJECTED and m.mass.sum() == total and m.eroded_mass == 0.0
-    assert m.wall_debris_mass == pytest.approx(m.E[S.MASS, wall], rel=1e-15) and m.crater_debris_mass == 0.0
+    assert m.alive[wall] == S.EJECTED and m.mass.sum() == total and m.ledger.eroded_mass == 0.0
+    assert m.ledger.wall_debris_mass == pytest.approx(m.E[S.MASS, wall], rel=1e-15) and m.ledger.crater_debris_mass == 0.0
     m.alive[near] = S.ERODING
     with pytest.raises(InsideTarget, match=f"element {near} "):
         retire(m)

@@ -66,7 +66,7 @@ def test_time_step_collapse_is_refused_or_eroded():
     with pytest.raises(Unstable, match="time step below the floor"):
         _penetration(Ogive(3.0, 0.07), 835.0, guard=False, dt_floor=0.9, end=5e-4)
     m, p, res = _penetration(Ogive(3.0, 0.07), 835.0, guard=True, dt_floor=0.9, end=3e-4)
-    assert m.eroded_mass > 0 and np.isfinite(p.Zt)
+    assert m.ledger.eroded_mass > 0 and np.isfinite(p.Zt)
 
 
 def test_controls_refuse_bad_values():

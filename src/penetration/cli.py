@@ -31,7 +31,7 @@ KEYS_HELP = {
     "minimum_nstar": "radius=a length=b",
     "table": "path=FILE.csv (columns x,y in metres)",
 }
-# nose keys of dop and simulate: nstar's without radius (the shank radius is diameter_m/2); levels.nose_keys
+# nose keys of dop and simulate: nstar's without radius (the shank radius is diameter_m/2); shots.ladder.nose_keys
 SHOT_NOSE_HELP = {
     "ogive": "psi=CRH or crh=CRH (the shots CSV's name) [tip_radius=m]",
     "cone": "length=m (the nose's) [tip_radius=m]",
@@ -334,7 +334,7 @@ def _context(args):
 
 def _shot(args):
     """The UserShot of dop/simulate's keys: the shot fields of the shots CSV (converted to SI by
-    levels.shot_from_keywords) and the nose's keys."""
+    shots.ladder.shot_from_keywords) and the nose's keys."""
     from .shots.ladder import shot_from_keywords
     return shot_from_keywords(args.kind, _keywords(args.params))
 

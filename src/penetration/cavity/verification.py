@@ -52,11 +52,11 @@ def plastic_similarity(velocities_epp=(100.0, 300.0, 1000.0), velocities_mc=(300
     for V in velocities_epp:
         ours = expand(Simple(RHO, K, G, Y), V, mesh=Mesh(zones=200)).wall_stress
         checks.append(near(f"elastic-perfectly-plastic cavity at {V:g} m/s (200 zones)", "wall stress", ours,
-                           epp_wall_stress(V, RHO, K, G, Y), 0.02, "Pa", "similarity solution (cavity_oracles)"))
+                           epp_wall_stress(V, RHO, K, G, Y), 0.02, "Pa", "similarity solution (cavity.oracles)"))
     for V in velocities_mc:
         ours = expand(Simple(RHO, K, G, Y, lam=0.5), V, mesh=Mesh(zones=200)).wall_stress
         checks.append(near(f"Mohr-Coulomb cavity at {V:g} m/s (200 zones)", "wall stress", ours,
-                           mohr_coulomb_wall_stress(V, RHO, K, G, Y, 0.5), 0.02, "Pa", "similarity solution (cavity_oracles)"))
+                           mohr_coulomb_wall_stress(V, RHO, K, G, Y, 0.5), 0.02, "Pa", "similarity solution (cavity.oracles)"))
     return checks
 
 

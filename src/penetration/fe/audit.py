@@ -5,7 +5,8 @@ Energy balance:
     KE_target + KE_projectile + IE + W_hourglass + E_eroded + W_contact + W_boundary + E_window + E_remap
         + E_ejecta - W_external = E_0
 
-with E_eroded the internal energy of eroded elements plus the kinetic energy of dropped free nodes, W_contact the
+(the entries of the run's record, ``state.A_*``, and of the model's ledger, ``ledger.Ledger``) with E_eroded the
+internal energy of eroded elements plus the kinetic energy of dropped free nodes, W_contact the
 kinetic energy the kinematic contact removes (its impulses are perfectly inelastic), W_boundary the work absorbed
 by non-reflecting boundaries, E_window what the moving window retired, W_external the work of loads and
 prescribed velocities, E_remap the kinetic energy the erosion-free target's remap removed (``fe.erosion_free.rezone``) and
@@ -42,21 +43,22 @@ class Audit:
         step counts per criterion in acc are reset."""
         m, p = self.model, self.proj
         ke_t, ke_p, ie = m.kinetic_energy(), self._ke_projectile(), m.internal_energy()
-        total = (ke_t + ke_p + ie + acc[A_HOURGLASS] + acc[A_BOUNDARY] + acc[A_CONTACT] + acc[A_ERODED] + m.E_eroded
-                 + m.E_window + m.E_remap + m.E_ejecta - acc[A_EXTERNAL])
-        pz = (m.momentum_z() + p[B_MASS] * p[B_VELOCITY] * p[B_ACTIVE] + m.dropped_momentum_z + m.remap_momentum_z
+        L = m.ledger
+        total = (ke_t + ke_p + ie + acc[A_HOURGLASS] + acc[A_BOUNDARY] + acc[A_CONTACT] + acc[A_ERODED] + L.eroded
+                 + L.window + L.remap + L.ejecta - acc[A_EXTERNAL])
+        pz = (m.momentum_z() + p[B_MASS] * p[B_VELOCITY] * p[B_ACTIVE] + L.dropped_momentum_z + L.remap_momentum_z
               - acc[A_BOUNDARY_IMPULSE])
         scale = self.E0 + abs(acc[A_EXTERNAL])
         steps = acc[A_STEPS:A_STEPS + len(CRITERIA)]
         n = steps.sum()
         row = dict(t=m.t, steps=m.steps, ke_target=ke_t, ke_projectile=ke_p, internal=ie, hourglass=acc[A_HOURGLASS],
-                   boundary=acc[A_BOUNDARY], contact=acc[A_CONTACT], eroded=acc[A_ERODED] + m.E_eroded,
-                   window=m.E_window, remap=m.E_remap, ejecta=m.E_ejecta, external=acc[A_EXTERNAL], total=total,
+                   boundary=acc[A_BOUNDARY], contact=acc[A_CONTACT], eroded=acc[A_ERODED] + L.eroded,
+                   window=L.window, remap=L.remap, ejecta=L.ejecta, external=acc[A_EXTERNAL], total=total,
                    energy_error=(total - self.E0) / scale if scale > 0 else 0.0, momentum_z=pz,
-                   momentum_error=(pz - self.P0) / abs(self.P0) if self.P0 != 0 else pz, eroded_mass=m.eroded_mass,
-                   ejected_mass=m.ejected_mass, crater_debris_mass=m.crater_debris_mass,
-                   wall_debris_mass=m.wall_debris_mass,
-                   dropped_mass=m.dropped_mass, window_mass=m.window_mass, depth=p[B_TIP], velocity=p[B_VELOCITY], dt=dt,
+                   momentum_error=(pz - self.P0) / abs(self.P0) if self.P0 != 0 else pz, eroded_mass=L.eroded_mass,
+                   ejected_mass=L.ejected_mass, crater_debris_mass=L.crater_debris_mass,
+                   wall_debris_mass=L.wall_debris_mass,
+                   dropped_mass=L.dropped_mass, window_mass=L.window_mass, depth=p[B_TIP], velocity=p[B_VELOCITY], dt=dt,
                    alive=int((m.alive == LIVE).sum()),
                    **{f"dt_share_{name}": (steps[c] / n if n else 0.0) for c, name in CRITERIA.items()},
                    dt_criterion=CRITERIA[int(ctrl[0])], dt_element=int(ctrl[1]))

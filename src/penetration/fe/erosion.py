@@ -35,15 +35,15 @@ def retire(model):
         debris.eject(model, just)
     else:
         model.alive[just] = ERODED
-        model.eroded_mass += float(model.E[MASS, just].sum())
+        model.ledger.eroded_mass += float(model.E[MASS, just].sum())
     nodes = model.conn[just].ravel()
     np.subtract.at(model.count, nodes, 1)
     free = np.unique(nodes[model.count[nodes] == 0])
     free = free[model.nstate[free] == ACTIVE]
     if model.controls.drop_free_nodes and not model.controls.erosion_free:
         kinetic, mass = model.drop_nodes(free)
-        model.E_eroded += kinetic
-        model.dropped_mass += mass
+        model.ledger.eroded += kinetic
+        model.ledger.dropped_mass += mass
     else:
         model.nstate[free] = FREE
     return just.size

@@ -18,7 +18,7 @@ from .erosion_free import rezone as _rezone
 from .constitutive import impedances, material_of
 from .contact import Projectile
 from .mesh import Grid
-from .erosion_free.rezone import R_COUNT, R_ENERGY, R_MOMENTUM
+from .ledger import Ledger
 from .spec import Controls
 from .state import (ACTIVE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUARD, C_Q1, C_Q2, C_QH, DROPPED,
                     EROSION_KINDS, FIX_R, FIX_Z, FREE, IE, LIVE, MASS, N_CTL, N_FIELDS, V0, Body, Boundary, Loads,
@@ -104,23 +104,13 @@ class Model:
         # booked quantities
         self.t = 0.0
         self.steps = 0
-        self.E_eroded = 0.0
-        self.eroded_mass = 0.0
-        self.dropped_mass = 0.0
-        self.dropped_momentum_z = 0.0
+        self.ledger = Ledger()   # what leaves the mechanical state and where it goes (fe.ledger)
         self.j0, self.j1 = 0, g.nz
         self.window_started = False
-        self.E_window = 0.0
-        self.window_mass = 0.0
         self.dash_base = self.dash.copy()
         self.presc_i, self.presc_v = np.zeros(0, np.int64), np.zeros((2, 0))
         self.load_i, self.load_f = np.zeros(0, np.int64), np.zeros((2, 0))
-        self.ejected_mass = 0.0
-        self.crater_debris_mass = 0.0   # of the ejected: below the struck face, in the crater (fe.erosion_free.debris)
-        self.wall_debris_mass = 0.0     # of the ejected: the tunnel's wall deeper, behind the tail (fe.erosion_free.debris)
         self.tip = -np.inf   # the projectile tip's depth at the last set_window (m)
-        self.E_ejecta = 0.0
-        self.remapped = np.zeros(R_COUNT + 1)   # the rezones' report (fe.erosion_free.rezone: energy, momentum, moves)
         free = c.erosion_free   # the erosion-free target's controls, None on the eroding one
         rz = np.inf if free is None or free.rezone_radius is None else free.rezone_radius
         self.rezone_columns = int(min(g.nr, max(2, np.searchsorted(g.R[0], rz))))
@@ -216,7 +206,7 @@ class Model:
         kinetic energy and mass, for the caller to book where they went."""
         m = self.mass[nodes]
         kinetic = 0.5 * float(np.sum(m * (self.vr[nodes] ** 2 + self.vz[nodes] ** 2)))
-        self.dropped_momentum_z += float(np.sum(m * self.vz[nodes]))
+        self.ledger.dropped_momentum_z += float(np.sum(m * self.vz[nodes]))
         self.nstate[nodes] = DROPPED
         self.vr[nodes] = 0.0
         self.vz[nodes] = 0.0
@@ -230,23 +220,14 @@ class Model:
         thin_crater = c.crater_thin_after is not None and self.tip > c.crater_thin_after
         crater = (c.crater_depth or 0.0) if thin_crater else 0.0
         if c.eject_height is not None and _rezone.eject(zone, self.X, self.alive, c.eject_length * self.element_size,
-                                                        c.eject_height, crater, self.remapped):
+                                                        c.eject_height, crater, self.ledger.remapped):
             self.retire_eroded()
         state = self.nstate
         if self.presc_i.size:   # a node whose velocity is prescribed stays where its material is
             state = state.copy()
             state[self.presc_i] = FREE
         return _rezone.rezone(zone, self.X, self.V, self.E, self.alive, state, self.mass, self.material.rho0,
-                              c.rezone_quality, c.rezone_weight, self.remapped)
-
-    @property
-    def E_remap(self):
-        """Kinetic energy the rezones' remap removed (J)."""
-        return float(self.remapped[R_ENERGY])
-
-    @property
-    def remap_momentum_z(self):
-        return float(self.remapped[R_MOMENTUM])
+                              c.rezone_quality, c.rezone_weight, self.ledger.remapped)
 
     def retire_eroded(self):
         """Remove the elements eroded in the last pass (``erosion.retire``)."""

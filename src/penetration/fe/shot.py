@@ -1,8 +1,8 @@
 """One shot at the finite-element level: the mesh, model and projectile of a run spec (``spec.RunSpec``), its run,
 and its results (depth, filtered deceleration, audit, nose pressure, the share of the tunnel eroded).
 
-``run_shot(spec)`` runs a spec built once (``fe_level.scene_spec`` for a scene
-of the pipeline, ``levels.fe_spec`` for a user's shot); nothing is read from
+``run_shot(spec)`` runs a spec built once (``fe.level.scene_spec`` for a scene
+of the pipeline, ``shots.ladder.fe_spec`` for a user's shot); nothing is read from
 elsewhere after that.
 """
 from __future__ import annotations
@@ -212,5 +212,5 @@ def run_shot(spec: RunSpec, keep_model=False, max_attempts=3) -> ShotResult:
     return ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
                       {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
                        "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
-                      model.eroded_mass, pmax[0], model if keep_model else None, attempt,
+                      model.ledger.eroded_mass, pmax[0], model if keep_model else None, attempt,
                       tunnel_eroded_share(model, nose.radius, float(proj.Zt)), res.dt_shares, res.dt_control)

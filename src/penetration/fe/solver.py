@@ -171,7 +171,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None):
                 status, diag = "failed", str(err)
                 break
             if c.erosion_free:
-                rec.acc[A_ERODED] = 0.0   # the guard's elements were ejecta (booked as model.E_ejecta)
+                rec.acc[A_ERODED] = 0.0   # the guard's elements were ejecta (booked as the ledger's ejecta)
         if c.erosion_free and code in (REACHED, PAUSED):
             bad = model.rezone()
             if bad:
@@ -202,7 +202,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None):
                 last_log = now
                 LOG.info("t %8.3f ms  steps %7d  depth %7.4f m  v %8.2f m/s  energy error %+.2e  eroded %8.2f kg  "
                          "dt by %s  wall %6.1f s", model.t * 1e3, model.steps, proj[B_TIP], proj[B_VELOCITY],
-                         row["energy_error"], model.eroded_mass, row["dt_criterion"], now - t0)
+                         row["energy_error"], model.ledger.eroded_mass, row["dt_criterion"], now - t0)
         if code in (AT_REST, PERFORATED) or (code == REACHED and model.t >= c.end_time - 1e-15):
             break
     model.dt = dt

@@ -63,10 +63,10 @@ def _retire_rows(m, j0):
     g = m.grid
     el = np.arange(m.j0 * g.nr, j0 * g.nr)
     live = el[m.alive[el] == LIVE]
-    m.E_window += float(m.E[IE, live].sum())
-    m.window_mass += float(m.E[MASS, live].sum())
+    m.ledger.window += float(m.E[IE, live].sum())
+    m.ledger.window_mass += float(m.E[MASS, live].sum())
     m.alive[live] = RETIRED
     nodes = np.arange(m.j0 * (g.nr + 1), j0 * (g.nr + 1))
-    m.E_window += m.drop_nodes(nodes[m.nstate[nodes] < DROPPED])[0]
+    m.ledger.window += m.drop_nodes(nodes[m.nstate[nodes] < DROPPED])[0]
     m.rows.dt[m.j0:j0] = NO_STEP
     m.j0 = j0

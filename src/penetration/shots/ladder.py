@@ -254,7 +254,7 @@ def fe_spec(shot: UserShot, ctx: Context):
 
 
 def _fe(shot, ctx, log=None):
-    """The fe level: its cost is estimated first (fe_level.estimate_cost, told to ``log``), and a shot estimated to
+    """The fe level: its cost is estimated first (fe.level.estimate_cost, told to ``log``), and a shot estimated to
     cost more than ctx.fe_max_seconds is refused before it runs (no estimate, which probes the kernels for about a
     second, when there is neither a limit nor a log to tell it to)."""
     from ..fe.level import estimate_cost

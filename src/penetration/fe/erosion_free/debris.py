@@ -32,8 +32,9 @@ def eject(model, just):
         wall, deep = deep[reach], deep[~reach]
     if deep.size:
         raise InsideTarget(f"{model.where(int(deep[0]))} lost its shape inside the target at t = {model.t:.6g} s")
-    model.wall_debris_mass += float(model.E[MASS, wall].sum())
+    ledger = model.ledger
+    ledger.wall_debris_mass += float(model.E[MASS, wall].sum())
     model.alive[just] = EJECTED
-    model.ejected_mass += float(model.E[MASS, just].sum())
-    model.crater_debris_mass += float(model.E[MASS, just[(zc >= 0.0) & (zc < crater)]].sum())
-    model.E_ejecta += float(model.E[IE, just].sum())
+    ledger.ejected_mass += float(model.E[MASS, just].sum())
+    ledger.crater_debris_mass += float(model.E[MASS, just[(zc >= 0.0) & (zc < crater)]].sum())
+    ledger.ejecta += float(model.E[IE, just].sum())

@@ -267,10 +267,10 @@ def erosion_energy(v=50.0, nz=100, share=0.9):
     strain_energy = sum(cf.uniaxial_strain_energy(M, m.E[fe_state.V0, e], x) for e, x in held.items())
     row_mass = rho * math.pi * R * R * h0 / 2
     name = f"erosion energy: the struck row of a steel column eroding under a rigid face at {v:g} m/s"
-    return [_near(name, "internal energy booked as eroded", res.audit[-1]["eroded"] - m.E_eroded, strain_energy, 0.005, "J",
+    return [_near(name, "internal energy booked as eroded", res.audit[-1]["eroded"] - m.ledger.eroded, strain_energy, 0.005, "J",
                   f"V0 M (e exp(e) - exp(e) + 1) at the {len(held)} elements' strain at erosion (closed form; the "
                   "midpoint integration of the few steps of the front differs at 1e-3)"),
-            _near(name, "kinetic energy booked for the freed nodes", m.E_eroded, 0.5 * row_mass * v * v, 0.005, "J",
+            _near(name, "kinetic energy booked for the freed nodes", m.ledger.eroded, 0.5 * row_mass * v * v, 0.005, "J",
                   "the struck row's mass (rho pi R^2 h/2) at the face's speed"),
-            _near(name, "momentum booked for the freed nodes", m.dropped_momentum_z, row_mass * v, 0.005, "N s",
+            _near(name, "momentum booked for the freed nodes", m.ledger.dropped_momentum_z, row_mass * v, 0.005, "N s",
                   "the struck row's mass at the face's speed")]

@@ -40,7 +40,7 @@ def erosion_free_audit(v=40.0, across=4, hole=0.25):
     return [Check(name, "projectile speed at the end / v", p.V / v, 1.0, 1.0 - 1e-3, 1.0 + 1e-3, "1",
                   "1: driven at a constant speed (1e6 kg; within 1e-3)"),
             _below(name, "eroded mass + |eroded energy| (no element deleted)",
-                   m.eroded_mass + abs(res.audit[-1]["eroded"]), 1e-300, "kg + J",
+                   m.ledger.eroded_mass + abs(res.audit[-1]["eroded"]), 1e-300, "kg + J",
                    "0 exactly: the erosion-free target deletes nothing (exact)"),
             _below(name, "|energy error| / work done on the target (no eroded term)", abs(error), 0.01, "1",
                    "conservation (the audit with the remap's and the ejecta's terms)")]

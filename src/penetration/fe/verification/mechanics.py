@@ -56,12 +56,12 @@ def _rezoned_checks(name, m):
     that the kinetic energy the velocity remap changed is small against the kinetic and internal energy now."""
     if not m.controls.erosion_free:
         return []
-    moves = float(m.remapped[R_MOVED])
+    moves = float(m.ledger.remapped[R_MOVED])
     scale = m.kinetic_energy() + m.internal_energy()
     return [Check(name, "node moves made by the rezones", moves, math.nan, 1.0, math.inf, "1",
                   ">= 1: the rezoning acted"),
             _below(name, "|kinetic energy changed by the remap| / (kinetic + internal energy)",
-                   abs(m.E_remap) / scale, 1e-3, "1", "conservation (small: the velocity remap is not exactly conservative, fe.erosion_free.rezone)")]
+                   abs(m.ledger.remap) / scale, 1e-3, "1", "conservation (small: the velocity remap is not exactly conservative, fe.erosion_free.rezone)")]
 
 
 # the erosion-free target's rezoning forced on every node of a problem's zone, every 5 steps (a node moves half-way to

@@ -69,14 +69,14 @@ def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: H
         res = run(m, p)
     except Unstable as stop:   # a stopped run is a result of the check: where and when, no force
         return {**base, "force_over_area_pa": float("nan"), "force_std_pa": float("nan"), "samples": 0,
-                "eroded_mass_kg": float(m.eroded_mass), "steps": int(m.steps), "elements": int(m.alive.size),
+                "eroded_mass_kg": float(m.ledger.eroded_mass), "steps": int(m.steps), "elements": int(m.alive.size),
                 "status": "stopped", "diagnostic": str(stop), "wall_time_s": time.perf_counter() - t0}
     depth = np.asarray(res.history["depth"])
     force = np.abs(np.asarray(res.history["contact_force"]))
     steady = depth > STEADY_FROM * a
     area = math.pi * a * a
     return {**base, "force_over_area_pa": float(force[steady].mean() / area), "force_std_pa": float(force[steady].std() / area),
-            "samples": int(steady.sum()), "eroded_mass_kg": float(m.eroded_mass), "steps": int(res.steps),
+            "samples": int(steady.sum()), "eroded_mass_kg": float(m.ledger.eroded_mass), "steps": int(res.steps),
             "elements": int(m.alive.size), "status": res.status, "diagnostic": "", "wall_time_s": time.perf_counter() - t0}
 
 
