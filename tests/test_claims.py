@@ -1,6 +1,6 @@
-"""The paper's claims judged at each level (paper.claims): the verdict rules against hand-made tables, and the whole
-table from the committed outputs against the bottom line of the committed report (made before the verdicts moved
-into the pipeline: an independent rendering of the same judgments)."""
+"""The paper's claims judged at each level (paper.claims): the verdict rules against hand-made tables; the whole table
+from the committed outputs against the committed claims and the bottom line of the committed report (which, before
+the verdicts moved into the pipeline, judged them with code of its own and gave the same cells)."""
 import html
 import json
 from pathlib import Path
