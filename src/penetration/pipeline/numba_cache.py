@@ -47,7 +47,6 @@ def configure_llvm():
 
 def check():
     """Delete stale numba cache files of the package (returns how many were deleted)."""
-    caches = sorted(PACKAGE.rglob("__pycache__"))   # every folder: a kernel may inline one of another folder
     want = fingerprint()
     stamp = PACKAGE / "__pycache__" / STAMP
     try:
@@ -56,7 +55,7 @@ def check():
     except OSError:
         pass
     removed = 0
-    for folder in caches:
+    for folder in sorted(PACKAGE.rglob("__pycache__")):   # every folder: a kernel may inline one of another folder
         for f in list(folder.glob("*.nbi")) + list(folder.glob("*.nbc")):
             try:
                 f.unlink()
