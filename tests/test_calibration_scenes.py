@@ -6,7 +6,8 @@ import pytest
 import yaml
 
 from penetration.analytic.dop import penetration_depth
-from penetration.analytic.fits import calibrate_strength, diameter_interval, fit_strength, infer_diameter
+from penetration.analytic.fits import (calibrate_strength, diameter_interval, fit_nstar_and_strength, fit_strength,
+                                      infer_diameter)
 from penetration.analytic.resistance import Target
 from penetration.nose.geometry import Ogive
 from penetration.pipeline.config import ConfigError
@@ -29,6 +30,22 @@ def test_fit_recovers_strength_from_synthetic_cells():
               "depth": float(penetration_depth(81.1, 0.07, n, tg, v))} for n in (0.06, 0.1) for v in (500, 1000)]
     fit = fit_strength(cells, 2440.0, 48e6)
     assert fit["S"] == pytest.approx(5.5, rel=1e-9) and fit["max_abs"] < 1e-9
+
+
+@pytest.mark.parametrize("log", [False, True])
+def test_row_fit_recovers_nstar_and_strength_of_a_synthetic_row(log):
+    """Four depths of Table 3's projectile made by Eq 9 with a known (N*, S) give back that pair, in absolute or in
+    ln-depth residuals; depths off by +-1 % at alternate velocities leave an rms ln residual of that size."""
+    truth = (0.13, 5.2)
+    cells = [{"mass": 81.1, "radius": 0.07, "vs": v,
+              "depth": float(penetration_depth(81.1, 0.07, truth[0], Target(2440.0, 48e6, truth[1]), v))}
+             for v in (500.0, 800.0, 1000.0, 1200.0)]
+    fit = fit_nstar_and_strength(cells, 2440.0, 48e6, log=log)
+    assert fit["nstar"] == pytest.approx(truth[0], rel=1e-7) and fit["S"] == pytest.approx(truth[1], rel=1e-7)
+    if log:
+        bent = [{**c, "depth": c["depth"] * (1.01 if k % 2 else 0.99)} for k, c in enumerate(cells)]
+        rms = fit_nstar_and_strength(bent, 2440.0, 48e6, log=True)["rms_ln_residual"]
+        assert 0.003 < rms <= 0.01005
 
 
 def test_diameter_interval_ends_hit_the_axis_bounds():

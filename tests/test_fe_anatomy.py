@@ -43,7 +43,7 @@ def test_no_function_takes_more_than_12_arguments(path):
 ONCE = {
     "bulk viscosity": ("timestep.py", "viscosity", r"q1 \* q1 \* lc \* tv \* tv"),
     "stable step": ("timestep.py", "stable_step", r"math\.sqrt\(Q \* Q \+ c \* c\)"),
-    "energy increment": ("element.py", "energy_increment", r"qv \* tv \* dt"),
+    "energy increment": ("element.py", "energy_increment", r"\(q_old \+ q_new\) \* tv \* dt"),
     "erosion criterion": ("erosion.py", "erodes", r"eps_p >= value"),
     "node update": ("nodes.py", "new_velocity", r"dtv \* fr / m"),
     "force gather": ("nodes.py", "_corner", r"F\[k, e\]"),

@@ -69,7 +69,8 @@ def figure(path, width=760):
 
 diff = pd.read_csv(FIG / "diff.csv")
 fe_diff = pd.read_csv(FIG / f"fe/{PROFILE}/diff.csv")
-STATUSES = ["reproduced", "agrees-after-calibration", "deviates", "undecided", "paper-inconsistent", "not-derivable"]
+MEANINGS = json.loads(os.environ["PENETRATION_STATUSES"])  # the diff's statuses, in order, and what each says
+STATUSES = list(MEANINGS)
 
 # %% [markdown]
 # ## The bottom line
@@ -232,12 +233,8 @@ display(HTML(
 # moving window, solver and calibration studies, accuracy against cost) are a target of their own
 # (`make studies`): the report shows their committed outputs, marked *study*, which a rebuild of the paper does not
 # recompute. The paper's values are those its text and tables state, transcribed in
-# `workflow/reference/paper_values.csv`; its figure images are not available. Statuses of the diff:
-# **reproduced** (within the stated tolerance, nothing fitted), **agrees-after-calibration** (within
-# tolerance, but a calibration on the DO1 shot produced the agreement: not a reproduction),
-# **deviates**, **undecided** (a value known only within an interval, such as an FE result extrapolated to zero
-# element size, that holds both the paper's value and values outside the tolerance), **paper-inconsistent** (the
-# paper contradicts itself there), **not-derivable** (the paper does not give what the value needs).
+# `workflow/reference/paper_values.csv`; its figure images are not available. The statuses of the diff are
+# listed with the counts below.
 #
 # Open this file as a notebook with jupytext; `snakemake -c2 figures/report.html` renders it.
 
@@ -245,10 +242,12 @@ display(HTML(
 # ## At a glance
 #
 # Status counts of every compared value: the diff of the analytic, trajectory and cavity levels
-# (`figures/diff.csv`) and of the finite-element level (`figures/fe/<profile>/diff.csv`).
+# (`figures/diff.csv`) and of the finite-element level (`figures/fe/<profile>/diff.csv`). Only **reproduced** is a
+# computed number of a model reproduced with nothing fitted; the other statuses that hold are exact geometry, signs and
+# orderings, and the paper checked against itself.
 
 # %%
-counts = pd.DataFrame({"status": STATUSES,
+counts = pd.DataFrame({"status": STATUSES, "meaning": [MEANINGS[s] for s in STATUSES],
                        "analytic, trajectory, cavity": [int((diff.status == s).sum()) for s in STATUSES],
                        f"finite elements ({PROFILE} mesh)": [int((fe_diff.status == s).sum()) for s in STATUSES]})
 table(counts)

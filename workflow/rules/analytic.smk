@@ -21,6 +21,15 @@ use rule calibrate_table3_calc as calibrate_do1 with:
     log: "results/logs/calibrate_do1.log",
 
 
+# An inference on the paper's own numbers (no model of ours): Eq 9's effective N* and S per nose and Table 3 column.
+use rule calibrate_table3_calc as paper_eq9_effective with:
+    input: **task("tasks.analytic"), **GEOMETRY_RESULTS, **scene_input("workflow/scenes/table3.yaml"), schema=SCENE_SCHEMA,
+           reference=config["reference"], cal_do1="results/calibration/do1.json",
+    output: csv="figures/paper_eq9_effective.csv",
+    benchmark: "results/benchmarks/paper_eq9_effective.tsv"
+    log: "results/logs/paper_eq9_effective.log",
+
+
 use rule calibrate_table3_calc as infer_diameter_450kg with:
     input: **task("tasks.analytic"), **GEOMETRY_RESULTS, **scene_input("workflow/scenes/sec22_450kg.yaml"), schema=SCENE_SCHEMA,
            reference=config["reference"], cal_do1="results/calibration/do1.json",

@@ -115,6 +115,23 @@ rule fe_erosion_free_calibrated:
     script: "../scripts/run_task.py"
 
 
+# The semi-infinite target's radius (a study): shots of the erosion-free target at several radii (fe_target_radius).
+TARGET_RADIUS = config["fe_target_radius"]
+
+
+rule fe_target_radius:
+    input: **task("tasks.fe_window"), **GEOMETRY_RESULTS, reference=config["reference"],
+           **scene_input(f"workflow/scenes/fe/{TARGET_RADIUS['scene']}.yaml"), schema=SCENE_SCHEMA,
+    output: csv="figures/fe/erosion_free/target_radius.csv",
+    params: cfg=fe_cfg(TARGET_RADIUS["profile"]), hjc=config["concrete"], profile=TARGET_RADIUS["profile"],
+            shots=TARGET_RADIUS["shots"], radii=TARGET_RADIUS["radii"],
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/fe_target_radius.tsv"
+    log: "results/logs/fe_target_radius.log",
+    script: "../scripts/run_task.py"
+
+
 # The moving window on the erosion-free target (a study): each shot of fe_erosion_free.window with the window and
 # with the whole domain, several realisations each (the task of fe_window_study).
 FREE_WINDOW = config["fe_erosion_free"]["window"]

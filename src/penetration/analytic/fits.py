@@ -47,17 +47,24 @@ def cell_strength(cell, rho, fc, bracket=(1e-2, 1e3)):
     return brentq(f, *bracket, xtol=1e-14)
 
 
-def fit_nstar_and_strength(cells, rho, fc, starts=(0.02, 0.06, 0.1, 0.3)):
-    """Least-squares (N*, S) of Eq 9 to cells of one nose (absolute depth residuals, m).
+def fit_nstar_and_strength(cells, rho, fc, starts=(0.02, 0.06, 0.1, 0.3), log=False):
+    """Least-squares (N*, S) of Eq 9 to cells of one nose (absolute depth residuals, m; with ``log``, residuals in
+    ln depth, so that each velocity weighs by its relative error).
 
     N* is free here: the question is whether any (N*, S) reproduces the
     row, whatever the nose. Several starting N* guard against a local minimum.
     """
     m, a, v, d = (np.array([c[k] for c in cells], float) for k in ("mass", "radius", "vs", "depth"))
-    res = lambda p: penetration_depth(m, a, p[0], Target(rho, fc, p[1]), v) - d
+    if log:
+        res = lambda p: np.log(penetration_depth(m, a, p[0], Target(rho, fc, p[1]), v) / d)
+    else:
+        res = lambda p: penetration_depth(m, a, p[0], Target(rho, fc, p[1]), v) - d
     best = min((least_squares(res, [n0, 6.7], bounds=([1e-4, 1e-2], [2.0, 1e2]), xtol=1e-15, ftol=1e-15,
                               gtol=1e-15) for n0 in starts), key=lambda s: s.cost)
     r = res(best.x)
+    if log:
+        return {"nstar": float(best.x[0]), "S": float(best.x[1]), "ln_residuals": r.tolist(),
+                "rms_ln_residual": float(np.sqrt(np.mean(r**2))), "max_abs_ln_residual": float(np.max(np.abs(r)))}
     return {"nstar": float(best.x[0]), "S": float(best.x[1]), "residuals_m": r.tolist(),
             "max_abs_residual_m": float(np.max(np.abs(r)))}
 

@@ -137,15 +137,17 @@ def equivalent_rate(drr, dzz, dtt, drz, tv):
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)
-def energy_increment(Vh, old, new, de, qv, tv, dt):
+def energy_increment(Vh, old, new, de, q_old, q_new, tv, dt):
     """Internal energy gained over a step: the mean of the old and new stress (deviator and pressure:
-    (s_rr, s_zz, s_tt, s_rz, p)) on the strain increment de = (rr, zz, tt, rz), with the bulk viscosity's work,
-    on the half-step volume Vh."""
+    (s_rr, s_zz, s_tt, s_rz, p)) on the strain increment de = (rr, zz, tt, rz), with the bulk viscosity's work at
+    the mean of its old and new value (time-centred like the stress: the forces that did work over the step came
+    from the old q; booking the new one alone gains a fixed share of the energy every shock processes), on the
+    half-step volume Vh."""
     so0, so1, so2, so3, po = old
     n0, n1, n2, n3, pn = new
     de0, de1, de2, de3 = de
     return Vh * (0.5 * ((so0 - po + n0 - pn) * de0 + (so1 - po + n1 - pn) * de1 + (so2 - po + n2 - pn) * de2)
-                 + (so3 + n3) * de3 - qv * tv * dt)
+                 + (so3 + n3) * de3 - 0.5 * (q_old + q_new) * tv * dt)
 
 
 @njit(cache=True, inline="always", error_model="numpy", fastmath=FAST)

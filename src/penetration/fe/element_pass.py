@@ -78,7 +78,7 @@ def _kinematics(j, nr, X, V, E, alive, kind, q, chords, ctl, S):
         rho = q[0] * mu_ratio
         c = wave_speed(modulus, rho)
         qv = viscosity(rho, lc, c, tv, q1, q2)
-        ie_new = E[IE, e] + energy_increment(Vh, old, (n0, n1_, n2, n3, pn), de, qv, tv, dt)
+        ie_new = E[IE, e] + energy_increment(Vh, old, (n0, n1_, n2, n3, pn), de, E[QV, e], qv, tv, dt)
         dte = stable_step(lc, c, tv, q1, q2)
         ep_new = E[EPSP, e] + dep
         ee_new = E[EPSEFF, e] + rate * dt
@@ -129,7 +129,8 @@ def _scalar_update(e, i, E, kind, q, ctl, S):
     c = wave_speed(longitudinal_modulus(kind, q, mu_ratio - 1.0, E[MUMAX, e]), rho)
     S[S_C, i] = c
     qv = viscosity(rho, lc, c, tv, q1, q2)
-    E[IE, e] += energy_increment(S[S_VH, i], old, (E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]), de, qv, tv, dt)
+    E[IE, e] += energy_increment(S[S_VH, i], old, (E[SRR, e], E[SZZ, e], E[STT, e], E[SRZ, e], E[P, e]), de, E[QV, e],
+                                 qv, tv, dt)
     E[QV, e] = qv
     return stable_step(lc, c, tv, q1, q2)
 

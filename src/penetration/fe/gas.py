@@ -67,7 +67,8 @@ def run_ideal_gas(m: Model, gamma, end_time, modulus=0.0, dt_factor=0.5, outputs
     """Advance ``m`` as an ideal gas (density from its material's rho0, internal energy E[IE], J per element) to
     end_time. ``modulus``: the bulk modulus left to the element pass (its shear modulus is set to 0), which sets
     the sound speed of its hourglass control and linear viscosity; its pressure is taken off again (forces, and
-    its work from E[IE]: the pass books -V tr(D) dt ((p_old + p_new)/2 + q), of which the q share is kept), so
+    its work from E[IE]: the pass books -V tr(D) dt ((p_old + p_new)/2 + (q_old + q_new)/2), of which the q share
+    is kept), so
     that the flow sees the gas pressure and q only. Returns (audit, p): the audit of time, kinetic and internal
     energy at ``outputs`` evenly spaced times and the end, and the element pressures at the end."""
     m.q[1] = 0.0
@@ -94,10 +95,11 @@ def run_ideal_gas(m: Model, gamma, end_time, modulus=0.0, dt_factor=0.5, outputs
         dtv = dt if dt_old is None else 0.5 * (dt + dt_old)
         node_pass(m.span(), m.F, m.alive, m.mass, m.nstate, m.fix, m.dash, m.rowdash, (0.0, 0.0), dtv, m.V, m.rows.f)
         move(m.span(), m.X, m.V, m.nstate, dt)
-        e_old, pk_old = m.E[fe_state.IE].copy(), m.E[fe_state.P].copy()
+        e_old, pk_old, q_old = m.E[fe_state.IE].copy(), m.E[fe_state.P].copy(), m.E[fe_state.QV].copy()
         _pass(m, dt)
-        share = 0.5 * (pk_old + m.E[fe_state.P]) + m.E[fe_state.QV]
-        heat = (m.E[fe_state.IE] - e_old) * m.E[fe_state.QV] / np.where(share != 0.0, share, 1.0)
+        q_mean = 0.5 * (q_old + m.E[fe_state.QV])
+        share = 0.5 * (pk_old + m.E[fe_state.P]) + q_mean
+        heat = (m.E[fe_state.IE] - e_old) * q_mean / np.where(share != 0.0, share, 1.0)
         V_new, dW, bz, lc, rho = _geometry(m)
         dV = V_new - V
         tv = np.log(V_new / V) / dt

@@ -6,7 +6,8 @@ Its velocity is updated by the central-difference step from v^{n-1/2} to v^{n+1/
 update), with a non-reflecting (Lysmer) dashpot where the node has one and its fixity.
 
 Boundary.fix[n]: FIX_R holds v_r = 0 (axis, roller), FIX_Z holds v_z = 0. Boundary.dash[:, n] = (area, n_r, n_z):
-the dashpot on the node's share of the boundary, traction -rho c_p v_n n - rho c_s v_t, taken at the new velocity;
+the dashpot on the node's share of the boundary, traction -rho c_p v_n n - rho c_s v_t, taken at the mean of the
+old and new velocity;
 rowdash[j] = 1 where a node of row j off the grid's edges has one (the interior nodes of the other rows pass a
 zero area, which the compiler folds away). Rows.f[RF_POWER, j]: power the dashpots absorb, Rows.f[RF_IMPULSE, j]:
 their axial force, per node row. The rows VR0, VZ0 of V receive the velocities before the update (for the contact's work).
@@ -44,15 +45,19 @@ def new_velocity(ur, uz, fr, fz, m, dtv, fx, da, nr_, nz_, zp, zs):
     ur0, uz0 = ur, uz
     ur = ur - dtv * fr / m
     uz = uz - dtv * fz / m
-    # dashpot implicit in the new velocity: v' = v*/(1 + dtv Z da/m) per direction (stable for any damping; an
-    # explicit dashpot at the wave impedance is near-critically damped and needs a smaller step); its work is
-    # the impulse times the mean of the old and new velocities
+    # dashpot at the mean of the old and new velocity (trapezoidal, second order in the step; A-stable: its
+    # amplification (1 - b/2)/(1 + b/2), b = dtv Z da/m, stays in [-1, 1] for any damping, where an explicit dashpot
+    # at the wave impedance needs a smaller step and a backward-Euler one reflects at first order), per direction:
+    # v' = (v* - b/2 v_old)/(1 + b/2); its work is the impulse times the mean of the old and new velocities
     vn = ur * nr_ + uz * nz_
+    vn0 = ur0 * nr_ + uz0 * nz_
     tr_, tz_ = ur - vn * nr_, uz - vn * nz_
-    vn1 = vn / (1.0 + dtv * zp * da / m)
-    cn = 1.0 / (1.0 + dtv * zs * da / m)
-    ur1 = vn1 * nr_ + tr_ * cn
-    uz1 = vn1 * nz_ + tz_ * cn
+    tr0, tz0 = ur0 - vn0 * nr_, uz0 - vn0 * nz_
+    hp = 0.5 * dtv * zp * da / m
+    hs = 0.5 * dtv * zs * da / m
+    vn1 = (vn - hp * vn0) / (1.0 + hp)
+    ur1 = vn1 * nr_ + (tr_ - hs * tr0) / (1.0 + hs)
+    uz1 = vn1 * nz_ + (tz_ - hs * tz0) / (1.0 + hs)
     ir = m * (ur1 - ur)  # impulse of the dashpot
     iz = m * (uz1 - uz)
     dashed = da > 0.0

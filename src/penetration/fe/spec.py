@@ -92,7 +92,7 @@ FORMULATIONS = ("eroding", "erosion_free")
 @dataclass(frozen=True)
 class TargetSpec:
     kind: str = "semi_infinite"
-    radius: float = 1.2          # m (block: BLOCK_RADIUS)
+    radius: float = 4.8          # m (config fe.target_radius; block: BLOCK_RADIUS)
     depth: float | None = None   # m; None: from the expected depth (semi-infinite) or 5.4 (block)
     lateral: str | None = None   # the lateral face, one of TARGET_FACES; None: by kind (semi-infinite non-reflecting)
     bottom: str | None = None    # the bottom face, likewise

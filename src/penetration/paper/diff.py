@@ -1,13 +1,9 @@
 """The diff of the paper's numbers against ours, row by row.
 
-Each diff row compares one number the paper states with ours (status
-``reproduced``, or ``agrees-after-calibration`` when ours comes from a model
-with a parameter calibrated on a measured shot, or ``deviates``), checks
-the paper against its own arithmetic (``reproduced`` or
-``paper-inconsistent``), or shows a number that rests on something the
-paper does not state (``not-derivable``). A value known only within an interval (a mesh-dependent result
-extrapolated to zero element size) whose interval holds both the paper's value and values outside the
-tolerance is ``undecided``.
+Each row compares one number the paper states with ours, checks the paper against its own numbers, or shows a
+number that rests on something the paper does not state. Its status says which, and what a row that holds is
+worth: only ``reproduced`` is a computed depth, deceleration, share or contrast within tolerance with nothing
+fitted (STATUS_MEANINGS has every status).
 """
 from __future__ import annotations
 
@@ -21,8 +17,23 @@ from scipy.interpolate import PchipInterpolator
 from .reference import TABLE3_NOSES, UNITS, VELOCITIES, Ref
 
 COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
-STATUSES = ("reproduced", "agrees-after-calibration", "deviates", "undecided", "paper-inconsistent", "not-derivable")
-AGREES = ("reproduced", "agrees-after-calibration")  # the statuses a comparison within tolerance can have
+# each status and what it says, in the order the counts are shown
+STATUS_MEANINGS = {
+    "reproduced": "a computed number (depth, deceleration, share, contrast) within the stated tolerance, nothing fitted",
+    "geometry": "an exact result of the nose's shape (N*, mass, a shape rate) within tolerance",
+    "ordering": "a sign, ordering or axis bound the paper states, which ours satisfies (no magnitude compared)",
+    "paper-consistent": "the paper checked against its own numbers, which agree (nothing of ours involved)",
+    "agrees-after-calibration": "within tolerance, but a calibration on the DO1 shot produced the agreement: not a "
+                                "reproduction",
+    "deviates": "ours is outside the tolerance, or the sign or ordering fails",
+    "undecided": "a value known only within an interval (such as an FE result extrapolated to zero element size) "
+                 "that holds both the paper's value and values outside the tolerance",
+    "paper-inconsistent": "the paper contradicts itself there",
+    "not-derivable": "the paper does not give what the value needs",
+}
+STATUSES = tuple(STATUS_MEANINGS)
+# the statuses of a row that holds: a rebuild must keep them (tasks.reference.reproduction_problems)
+AGREES = ("reproduced", "geometry", "ordering", "paper-consistent", "agrees-after-calibration")
 
 
 @dataclass(frozen=True)
@@ -54,22 +65,26 @@ def holds(relation, paper, ours, tol):
     return {"le": ours <= paper, "ge": ours >= paper, "lt": ours < paper, "gt": ours > paper}[relation]
 
 
-def agreement(ok: bool, calibrated: bool) -> str:
-    """Status of a comparison: within tolerance from the stated inputs, after a calibration, or not."""
+def agreement(ok: bool, calibrated: bool, kind: str = "reproduced") -> str:
+    """Status of a comparison: ``kind`` (reproduced, geometry or ordering) when it holds from the stated inputs,
+    agrees-after-calibration when it holds after a calibration, deviates when it fails."""
     if not ok:
         return "deviates"
-    return "agrees-after-calibration" if calibrated else "reproduced"
+    return "agrees-after-calibration" if calibrated else kind
 
 
-def compare(ref: Ref, ours: float, case: str | None = None, quantity: str | None = None, calibrated=False) -> Row:
+def compare(ref: Ref, ours: float, case: str | None = None, quantity: str | None = None, calibrated=False,
+            kind="reproduced") -> Row:
     """Our value (in the reference's units) against the paper's.
 
-    ``calibrated``: ours comes from a model with a parameter calibrated on a
-    measured shot, so agreement is reported as such, never as reproduction.
+    ``calibrated``: ours comes from a model with a parameter calibrated on a measured shot, so agreement is reported
+    as such, never as reproduction. ``kind``: the status when it holds with nothing calibrated: ``reproduced`` (a
+    computed number, also against a bound the paper states for it), ``geometry`` (an exact result of the nose's
+    shape) or ``ordering`` (a sign, or a value inside a figure's axis range).
     """
     ok = holds(ref.relation, ref.value, ours, ref.tol)
     return Row(ref.item, quantity or ref.quantity, case or ref.case, ref.value, ours,
-               _rel(ref.value, ours), ref.tol, agreement(ok, calibrated))
+               _rel(ref.value, ours), ref.tol, agreement(ok, calibrated, kind))
 
 
 def unstated(ref: Ref, ours: float, case: str | None = None) -> Row:
@@ -82,7 +97,7 @@ def consistency(ref: Ref, recomputed: float, tol: float, case: str | None = None
     """The paper's number against its own arithmetic from other stated numbers."""
     err = _rel(ref.value, recomputed)
     return Row(ref.item, quantity or ref.quantity, case or ref.case, ref.value, recomputed, err, tol,
-               "reproduced" if err <= tol else "paper-inconsistent")
+               "paper-consistent" if err <= tol else "paper-inconsistent")
 
 
 def _decimals(x: float) -> int:
@@ -111,7 +126,7 @@ def arithmetic_check(ref: Ref, fn, inputs, case=None, quantity=None) -> Row:
     tol = slack / abs(ref.value) if ref.value else slack
     ok = lo - 0.5 * 10.0 ** -_decimals(ref.value) <= ref.value <= hi + 0.5 * 10.0 ** -_decimals(ref.value)
     return Row(ref.item, quantity or ref.quantity, case or ref.case, ref.value, mid, _rel(ref.value, mid), tol,
-               "reproduced" if ok else "paper-inconsistent")
+               "paper-consistent" if ok else "paper-inconsistent")
 
 
 # ------------------------------------------------------------- diff builders
@@ -138,7 +153,7 @@ def table3_rows(refs):
             checks = [arithmetic_check(cell, lambda s, c: 100 * abs(s - c) / base(s, c), [sim, calc],
                                        case=f"{v} {nose} (|sim-calc|/{name})")
                       for name, base in (("sim", lambda s, c: s), ("calc", lambda s, c: c))]
-            good = [r for r in checks if r.status == "reproduced"]
+            good = [r for r in checks if r.status == "paper-consistent"]
             rows.append(good[0] if good else min(checks, key=lambda r: r.rel_err))
         for nose in ("double_ogive", "crh45"):
             cell = R[f"table3.inc_crh3.{v}.{nose}"]
@@ -160,7 +175,7 @@ def table3_rows(refs):
         least = min(R[f"table3.{other}.{v}.double_ogive"].value for v in VELOCITIES)
         ok = holds(ref.relation, ref.value, least, ref.tol)
         rows.append(Row(ref.item, ref.quantity, "smallest Table 3 increment (claim read as a lower bound)", ref.value,
-                        least, _rel(ref.value, least), ref.tol, "reproduced" if ok else "paper-inconsistent"))
+                        least, _rel(ref.value, least), ref.tol, "paper-consistent" if ok else "paper-inconsistent"))
     return rows
 
 
@@ -190,12 +205,13 @@ def table4_rows(refs, ours):
         inferred = nose == "double_ogive"
         for item in ("table4", "fig16"):
             ref = R[f"{item}.nstar.{short}"]
-            rows.append((unstated if inferred else compare)(ref, ours[f"nstar.{nose}"]))
+            rows.append(unstated(ref, ours[f"nstar.{nose}"]) if inferred else
+                        compare(ref, ours[f"nstar.{nose}"], kind="geometry"))
         ref = R[f"table4.mass.{short}"]
-        rows.append((unstated if inferred else compare)(ref, ours[f"mass.{nose}"]))
+        rows.append(unstated(ref, ours[f"mass.{nose}"]) if inferred else compare(ref, ours[f"mass.{nose}"], kind="geometry"))
         ratio = ours[f"mass.{nose}"] / ours["mass.crh45"]
         ref = R[f"table4.ratio.{short}"]
-        rows.append((unstated if inferred else compare)(ref, ratio))
+        rows.append(unstated(ref, ratio) if inferred else compare(ref, ratio, kind="geometry"))
         if short != "crh45":
             rows.append(arithmetic_check(ref, lambda m, m45: m / m45, [R[f"table4.mass.{short}"], R["table4.mass.crh45"]],
                                          case=f"{nose} (paper masses)"))
@@ -217,21 +233,22 @@ def fig03_rows(refs, bands):
     """
     R, adopted = refs, bands["adopted"]
     b = bands[adopted]
-    rows = [compare(R["fig03.k_peak_x"], b["peak_x"]),
-            compare(R["fig03.middle_max"], b["hi"] - b["lo"], case=f"crh3 (k as {adopted})"),
-            compare(R["fig03.k_axis_max"], b["peak_k"], case=f"crh3 (k as {adopted})", quantity="k_peak <= axis max"),
-            compare(R["fig03.nstar_axis_max"], bands["nstar_crh3"], quantity="N* of CRH 3 <= axis max")]
+    rows = [compare(R["fig03.k_peak_x"], b["peak_x"], kind="geometry"),
+            compare(R["fig03.middle_max"], b["hi"] - b["lo"], case=f"crh3 (k as {adopted})", kind="geometry"),
+            compare(R["fig03.k_axis_max"], b["peak_k"], case=f"crh3 (k as {adopted})", quantity="k_peak <= axis max",
+                    kind="ordering"),
+            compare(R["fig03.nstar_axis_max"], bands["nstar_crh3"], quantity="N* of CRH 3 <= axis max", kind="ordering")]
     ref, peak = R["fig03.k_axis_max"], bands["dN/d(x/b)"]["peak_k"]
     rows.append(Row(ref.item, "k_peak <= axis max", "crh3 (k as labelled: dN*/d(x/b))", ref.value, peak,
-                    _rel(ref.value, peak), 0.0, "reproduced" if peak <= ref.value else "paper-inconsistent"))
+                    _rel(ref.value, peak), 0.0, "ordering" if peak <= ref.value else "paper-inconsistent"))
     return rows
 
 
 def fig05_rows(refs, ours):
     """Fig 5 claim: at the CRH 5 length the double ogive has the smallest N*."""
     R = refs
-    return [compare(R["fig05.do_below_crh5"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh5"]),
-            compare(R["fig05.do_below_crh3"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh3"])]
+    return [compare(R["fig05.do_below_crh5"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh5"], kind="ordering"),
+            compare(R["fig05.do_below_crh3"], ours["nstar.fig4_double_ogive"] - ours["nstar.fig4_crh3"], kind="ordering")]
 
 
 CONTRAST_COLUMNS = (("paper_sim", "paper sim."), ("paper_calc", "paper calc."), ("analytic", "Eq 9 (S cal.)"),
@@ -259,9 +276,9 @@ def contrast_summary(table, velocities=(500.0, 1200.0)) -> list:
 
 def summary(rows, findings, pending, contrasts=()) -> str:
     """Markdown summary: counts per status, the nose contrasts, worst deviations, findings."""
-    lines = ["# Reproduction diff", "", "| status | rows |", "|---|---|"]
+    lines = ["# Reproduction diff", "", "| status | rows | meaning |", "|---|---|---|"]
     for s in STATUSES:
-        lines.append(f"| {s} | {sum(r.status == s for r in rows)} |")
+        lines.append(f"| {s} | {sum(r.status == s for r in rows)} | {STATUS_MEANINGS[s]} |")
     if len(contrasts):
         lines += [""] + contrast_summary(contrasts)
     lines += ["", "## Largest relative errors among compared values (equalities with a tolerance)", "",
@@ -328,11 +345,11 @@ def ordering_rows(refs, sec22):
             diff = sec22[(a, v)][q] - sec22[(b, v)][q]
             scale = sec22[(b, v)][q]
             rows.append(_row(ref, ref.quantity + " (relative)", f"{v:.0f} m/s", diff / scale,
-                             "reproduced" if holds(ref.relation, 0.0, diff, 0.0) else "deviates"))
+                             agreement(holds(ref.relation, 0.0, diff, 0.0), False, "ordering")))
     for v in vel:
         ref = R[f"fig09.t_axis_max.{v:.0f}"]
         longest = max(sec22[(n, w)]["duration"] for n, w in sec22 if w == v) * 1e3
-        rows.append(compare(ref, longest, case=f"{v:.0f} m/s: longest penetration time (ms)"))
+        rows.append(compare(ref, longest, case=f"{v:.0f} m/s: longest penetration time (ms)", kind="ordering"))
     return rows
 
 
@@ -350,9 +367,9 @@ def fig01_rows(refs, shares):
     al = R["fig01.aluminium"]
     return [_row(al, al.quantity, al.case, float("nan"), "not-derivable"),
             _row(R["fig01.static_grows_with_fc"], "least increase of the static share between strengths",
-                 "v > 0", grow_fc, "reproduced" if grow_fc > 0 else "deviates"),
+                 "v > 0", grow_fc, agreement(grow_fc > 0, False, "ordering")),
             _row(R["fig01.inertial_grows_with_v"], "least increase of the inertial share between velocities",
-                 "all strengths", grow_v, "reproduced" if grow_v > 0 else "deviates")]
+                 "all strengths", grow_v, agreement(grow_v > 0, False, "ordering"))]
 
 
 def fig15_rows(refs, fig15, do1_pd_stated, do1_pd_calibrated):
@@ -590,7 +607,7 @@ def _beside(e, o) -> list:
 
 
 # the diff's status of the study's verdict on a contrast's ranking (its `verdict` column, studies.grid.ranking_verdict)
-RANKING_STATUS = {"holds": "reproduced", "fails": "deviates"}
+RANKING_STATUS = {"holds": "ordering", "fails": "deviates"}
 
 
 def erosion_free_rows(refs, limits, eroding, contrast_table):
@@ -602,7 +619,7 @@ def erosion_free_rows(refs, limits, eroding, contrast_table):
     Per contrast and velocity two rows: the increment against the paper's simulated one, judged on the band of the
     larger of the hole's and the meshes' GCI by interval_status (goal: 2 points; nothing is calibrated, so an
     agreement is a reproduction); and the paper's ranking (the ratio above 1): the study's verdict (its `verdict`
-    column: on the band where there is a limit, else on the holes' least-squares hull), reproduced where it holds,
+    column: on the band where there is a limit, else on the holes' least-squares hull), ordering where it holds,
     deviates where it fails, undecided otherwise."""
     rows = []
     others = {(r["contrast"], int(r["velocity"])): r for r in contrast_table}

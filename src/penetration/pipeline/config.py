@@ -283,8 +283,8 @@ def fe_mesh_elements(h, fe, radius, depth) -> int:
     s = _fe_settings(fe, h)
     q = s.grading
     core_r, core_d = s.core_calibers * radius, depth + 0.5 * s.depth_margin
-    nr = math.ceil(core_r / h)
-    nz = math.ceil(core_d / h)
+    nr = math.ceil(core_r / h - 1e-9)   # as fe.mesh.graded: a core of a whole number of cells counts them exactly
+    nz = math.ceil(core_d / h - 1e-9)
     nr += _graded_cells(fe["target_radius"] - nr * h, h, q)
     nz += _graded_cells(depth + s.depth_margin - nz * h, h, q)
     return nr * nz

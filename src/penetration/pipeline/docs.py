@@ -649,8 +649,16 @@ def claims(read) -> str:
     lines += [f"| {text[c]} | " + " | ".join(cell[(c, lv)] for lv in LABELS) + " |" for c in order]
     free = [f"{r['claim'].removesuffix(' (the paper' + chr(39) + 's ranking)')}: {r['evidence']}"
             for r in rows if r["level"] == "erosion_free"]
+    qs = _rows(read, "figures/fe/erosion_free/quasi_static.csv")
+    passed = [r for r in qs if r["within_band"] == "True"]
+    sigma = float(qs[0]["cavity_level_sigma_n_pa"])
+    ratios = [float(r[k]) / sigma for r in qs for k in ("judged_low_pa", "judged_high_pa")]
+    check = (f"That target {'passes' if len(passed) == len(qs) else 'fails'} its own quasi-static check on "
+             f"{len(qs) - len(passed)} of {len(qs)} pilot holes: a slowly driven CRH 3 ogive meets {min(ratios):.2f}-"
+             f"{max(ratios):.2f} of the cavity level's resistance, against a band of +-{_pct(qs[0]['band'])} set before the "
+             f"runs (`figures/fe/erosion_free/quasi_static.csv`).")
     return ("\n".join(lines) + "\n\nOn the erosion-free FE target (no element deleted, Table 1's HJC as stated; a study), the "
-            "paper's ranking of each contrast: " + "; ".join(free) + f" (`{path}`).\n")
+            "paper's ranking of each contrast: " + "; ".join(free) + f" (`{path}`). " + check + "\n")
 
 
 def studies(read) -> str:

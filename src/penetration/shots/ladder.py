@@ -135,7 +135,7 @@ class Context:
     failure_strain_source: str = ""
     fe_reference_radius: float = 0.07       # m: shank radius of the DO1 mesh the failure strain belongs to
     fe_settings: object = None              # fe.shot.Settings of the calibration mesh (None: its defaults)
-    fe_target_radius: float = 1.2           # m, at the reference radius
+    fe_target_radius: float = 4.8           # m, at the reference radius (config fe.target_radius)
     cavity_velocities: tuple = (50.0, 100.0, 150.0, 200.0, 300.0, 400.0, 500.0, 600.0, 800.0, 1000.0, 1200.0, 1500.0,
                                 2000.0)
     cavity_mesh: CavityMesh = field(default_factory=CavityMesh)

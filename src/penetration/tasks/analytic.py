@@ -67,6 +67,39 @@ def calibrate_table3_calc(inputs, outputs, params):
                outputs.json)
 
 
+# Table 3's two depth columns: the paper's simulations (LS-DYNA) and its calculations (Eq 9)
+TABLE3_COLUMNS = (("sim", "simulation"), ("calc", "calculation"))
+
+
+@task
+def paper_eq9_effective(inputs, outputs, params):
+    """Inference on the paper's own numbers: Eq 9's effective (N*, S) per nose through each Table 3 column.
+
+    For each column (simulation, calculation) and nose, (N*, S) fitted by least squares in ln depth to its four
+    depths (500-1200 m/s), with Table 3's projectile and target (48 MPa). A frictionless rigid nose changes only
+    N* between noses; an effective S that differs between noses says the column's nose effect acts like a change
+    of the static resistance. Nothing of ours is compared: this diagnoses the paper's numbers."""
+    refs = reference.load_reference(inputs.reference)
+    sc = scene_from_inputs(inputs, PLAIN)
+    rows = []
+    for key, column in TABLE3_COLUMNS:
+        fits = {}
+        for n in reference.TABLE3_NOSES:
+            cells = [{"mass": sc.mass, "radius": sc.radius, "vs": float(v), "depth": refs[f"table3.{key}.{v}.{n}"].si}
+                     for v in reference.VELOCITIES]
+            fits[n] = fit_nstar_and_strength(cells, sc.target.rho, sc.target.fc, log=True)
+        for n, f in fits.items():
+            rows.append({"column": column, "nose": n, "nstar_of_nose": nstar(sc.noses[n]), "nstar_effective": f["nstar"],
+                         "nstar_effective_over_nose": f["nstar"] / nstar(sc.noses[n]), "S_effective": f["S"],
+                         "S_effective_over_crh3": f["S"] / fits["crh3"]["S"],
+                         "rms_ln_residual": f["rms_ln_residual"], "max_abs_ln_residual": f["max_abs_ln_residual"],
+                         **{f"ln_residual_{v}_ms": r for v, r in zip(reference.VELOCITIES, f["ln_residuals"])}})
+    write_csv(pd.DataFrame(rows), outputs.csv)
+    for r in rows:
+        print(f"{r['column']:11s} {r['nose']:12s} N* {r['nstar_effective']:.4f} (nose {r['nstar_of_nose']:.4f}) "
+              f"S {r['S_effective']:.3f} ({r['S_effective_over_crh3']:.3f} of CRH 3's); rms {100 * r['rms_ln_residual']:.2f} %")
+
+
 @task
 def infer_diameter_450kg(inputs, outputs, params):
     """Diameter of the 450 kg projectiles from Fig 9's Pd/d axis ranges."""

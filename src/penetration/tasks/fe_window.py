@@ -41,6 +41,30 @@ def fe_erosion_free_window(inputs, outputs, params):
     window_study(inputs, outputs, params, params.nose)
 
 
+@task
+def fe_target_radius(inputs, outputs, params):
+    """The semi-infinite target's radius (its lateral boundary non-reflecting: a dashpot, which carries no static
+    load, so that a target of finite radius confines the concrete less than an infinite one): each shot of
+    ``params.shots`` (nose_velocity) of the scene at each radius of ``params.radii`` (m), one realisation each; the
+    depth against the largest radius's."""
+    rows = []
+    for name in params.shots:
+        nose, velocity = name.rsplit("_", 1)
+        for radius in params.radii:
+            print(f"target radius study: {nose} at {velocity} m/s, radius {radius:g} m", flush=True)
+            shot = SimpleNamespace(cfg={**params.cfg, "target_radius": float(radius)}, hjc=params.hjc,
+                                   profile=params.profile, nose=nose, velocity=velocity)
+            summary, r, _, sc = scene_shot(inputs, shot)
+            rows.append({"nose": nose, "velocity_ms": float(velocity), "target_radius_m": float(radius),
+                         "target_radius_over_shank": float(radius) / sc.radius, "depth_m": r.depth, "status": r.status,
+                         "time_to_rest_s": r.time, "steps": r.steps, "mesh_elements": r.elements,
+                         "element_size_m": summary["element_size"], "wall_time_s": r.wall_time})
+    runs = pd.DataFrame(rows).sort_values(["nose", "velocity_ms", "target_radius_m"], kind="stable")
+    widest = runs.groupby(["nose", "velocity_ms"]).depth_m.transform("last")
+    runs["depth_over_widest"] = runs.depth_m / widest
+    write_csv(runs, outputs.csv)
+
+
 def window_study(inputs, outputs, params, nose):
     """The scene's shot of ``nose`` at ``params.velocity`` with the moving window and with the whole domain."""
     members, step = int(params.members), float(params.velocity_step)

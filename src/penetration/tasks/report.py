@@ -2,7 +2,8 @@
 
 Executed in a Python kernel (nbclient; no notebook server) in the pipeline's directory, with the FE mesh
 profile of the build, the levels' labels and the studies' outputs (workflow/studies.yaml) in the environment
-(PENETRATION_FE_PROFILE, PENETRATION_LEVELS, PENETRATION_STUDIES); a cell that raises fails the rule.
+(PENETRATION_FE_PROFILE, PENETRATION_LEVELS, PENETRATION_STUDIES) and the diff's statuses with their meanings
+(PENETRATION_STATUSES); a cell that raises fails the rule.
 Rendered without the code (a reader's document), every figure embedded and no script, stylesheet or font fetched
 from the network (nbconvert's lab template less its require.js, MathJax and mermaid loaders), so the file stands alone
 and reads the same offline. Its few equations are HTML text (sub- and superscripts, Unicode), which needs no
@@ -23,6 +24,7 @@ from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 
 from ..levels import LABELS
+from ..paper.diff import STATUS_MEANINGS
 from ..pipeline.io import task, write_text
 
 
@@ -34,6 +36,7 @@ def report(inputs, outputs, params):
     os.environ["PENETRATION_FE_PROFILE"] = params.profile
     os.environ["PENETRATION_LEVELS"] = json.dumps(LABELS)
     os.environ["PENETRATION_STUDIES"] = json.dumps(list(params.studies))
+    os.environ["PENETRATION_STATUSES"] = json.dumps(STATUS_MEANINGS)
     NotebookClient(nb, timeout=params.timeout_s, kernel_name="python3",
                    resources={"metadata": {"path": os.getcwd()}}).execute()
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", []) if o.get("output_type") == "error"]

@@ -8,7 +8,8 @@ velocities, zones the stresses; zone masses are fixed. Momentum: rho du/dt = d s
 sigma_theta)/r, lumped on the nodes (half of each neighbouring zone). Kinematics exact in the volume: the
 volumetric increment ln(V'/V) and the radial one ln(dr'/dr) of a zone, its hoop increment their difference
 halved. Artificial viscosity in compressing zones q = rho (cq^2 du^2 + cl c |du|). The wall node moves at V,
-the far node is held (the run ends before the elastic precursor reaches it).
+the far node is held (the run ends before the elastic precursor reaches it: an infinite medium) or free (a body of
+finite radius with a traction-free surface, the quasi-static limit of a dashpot boundary).
 """
 from __future__ import annotations
 
@@ -33,10 +34,10 @@ def _mass(rho0, r0, r1, sphere):
 
 
 @njit(cache=True)
-def _run(r, V, t_end, t_from, k, cfl, cq, cl, sphere):
+def _run(r, V, t_end, t_from, k, cfl, cq, cl, sphere, free):
     """March to t_end; returns the mean over t_from..t_end of the wall stress (compression positive) weighted by
     the wall area, and the number of steps. ``sphere``: a spherical cavity, else a cylindrical one in plane
-    strain."""
+    strain; ``free``: the far surface is traction-free, else held."""
     n = r.size - 1
     rho0 = k[RHO0]
     c = math.sqrt((k[K1] + 4.0 * k[SHEAR] / 3.0) / rho0)   # the stiffest (fully dense) wave speed
@@ -60,24 +61,27 @@ def _run(r, V, t_end, t_from, k, cfl, cq, cl, sphere):
             dt = min(dt, cfl * (r[j + 1] - r[j]) / (c + 2.0 * cq * cq * abs(min(u[j + 1] - u[j], 0.0))))
         dt = min(dt, t_end - t + 1e-15)
         # forces on the nodes from the zone stresses (sigma_r = s_rr - p - q, sigma_t = s_tt - p - q)
-        for i in range(1, n):
+        for i in range(1, n + 1 if free else n):
             sr_l = s[i - 1, 0] - st[i - 1, 0] - q[i - 1]
-            sr_r = s[i, 0] - st[i, 0] - q[i]
             st_l = s[i - 1, 2] - st[i - 1, 0] - q[i - 1]
-            st_r = s[i, 2] - st[i, 0] - q[i]
+            outer = i == n   # the free surface: no zone beyond it, no traction
+            sr_r = 0.0 if outer else s[i, 0] - st[i, 0] - q[i]
+            st_r = 0.0 if outer else s[i, 2] - st[i, 0] - q[i]
+            r_next = r[i] if outer else r[i + 1]
             if sphere:
                 area = 4.0 * math.pi * r[i] ** 2
                 # 2 (sigma_r - sigma_t)/r over the node's two half zones
-                hoop = ((sr_l - st_l) * (r[i] ** 3 - r[i - 1] ** 3) + (sr_r - st_r) * (r[i + 1] ** 3 - r[i] ** 3)) \
+                hoop = ((sr_l - st_l) * (r[i] ** 3 - r[i - 1] ** 3) + (sr_r - st_r) * (r_next ** 3 - r[i] ** 3)) \
                     * 4.0 * math.pi / 3.0 / r[i]
             else:
                 area = 2.0 * math.pi * r[i]
                 # (sigma_r - sigma_t)/r over the node's two half rings
-                hoop = ((sr_l - st_l) * (r[i] ** 2 - r[i - 1] ** 2) + (sr_r - st_r) * (r[i + 1] ** 2 - r[i] ** 2)) \
+                hoop = ((sr_l - st_l) * (r[i] ** 2 - r[i - 1] ** 2) + (sr_r - st_r) * (r_next ** 2 - r[i] ** 2)) \
                     * 0.5 * math.pi / r[i]
             u[i] += dt * (area * (sr_r - sr_l) + hoop) / node_mass[i]
         u[0] = V
-        u[n] = 0.0
+        if not free:
+            u[n] = 0.0
         r_old = r.copy()
         for i in range(n + 1):
             r[i] += dt * u[i]
@@ -107,10 +111,13 @@ def _run(r, V, t_end, t_from, k, cfl, cq, cl, sphere):
     return num / den, steps
 
 
-def wall_stress(material, V, a0, t_end, t_from, r_out=1.0, zones=400, cfl=0.4, cq=1.5, cl=0.06, sphere=True):
+def wall_stress(material, V, a0, t_end, t_from, r_out=1.0, zones=400, cfl=0.4, cq=1.5, cl=0.06, sphere=True,
+                free=False):
     """Mean radial stress on a cavity wall (Pa, compression positive, weighted by the wall area) over
     t_from..t_end, the wall moving out at V from radius a0 at t = 0 in ``material`` (an hjc.HJC) at rest;
-    geometric zones from a0 to r_out. ``sphere``: a spherical cavity, else a cylindrical one in plane strain."""
+    geometric zones from a0 to r_out. ``sphere``: a spherical cavity, else a cylindrical one in plane strain;
+    ``free``: the surface at r_out is traction-free (a body of that radius), else held."""
     r = a0 * np.geomspace(1.0, r_out / a0, zones + 1)
-    value, _ = _run(r, float(V), float(t_end), float(t_from), constants(material), cfl, cq, cl, bool(sphere))
+    value, _ = _run(r, float(V), float(t_end), float(t_from), constants(material), cfl, cq, cl, bool(sphere),
+                    bool(free))
     return float(value)

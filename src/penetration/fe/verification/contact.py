@@ -31,24 +31,28 @@ def noh_cylindrical(meshes=(100, 200, 400)):
     density 16, pre-shock 1 + t/r) as a radial implosion in a column with rollers, on the solver's kernels with
     an ideal gas (``gas``: the element pass's bulk viscosity, Q1 = 1.5, the gas pressure added). Known:
     artificial viscosity without heat conduction over-heats the gas at the axis (Noh 1987's wall heating: a
-    density dip near r = 0 that spreads over a few zones), so the post-shock plateau converges at first order
-    (13.98, 14.95 at 100 and 200 zones); its Richardson limit and the shock's are checked against the exact
-    values. The energy error is the time discretisation of the viscosity's work (first order in the step)."""
+    density dip near r = 0 that spreads over a few zones), so the post-shock plateau converges at first order;
+    its Richardson limit (within 1 % of 16) and the shock's are checked against the exact values. The viscosity's
+    work is booked at the mean of its old and new value: booked with the new value alone, the energy gained a
+    fixed share (+0.72, +0.65, +0.60 % at 100, 200, 400 zones) and the density's limit stopped at 15.77. The
+    energy error must fall with the mesh, and stay under 0.5 %."""
     results = [noh_cylinder_run(n) for n in meshes]
     shock, rho_post, _, pre = cf.noh(5.0 / 3.0, 1.0, 1.0, 0.6, 2)
     name = f"Noh's cylindrical implosion (gamma 5/3, t = 0.6; {'/'.join(map(str, meshes))} zones in r)"
     source = "ExactPack noh / Noh (1987) (closed form)"
     rows = []
-    for k, label, exact in ((0, "post-shock density (0.05 < r < 0.15 m)", rho_post), (1, "shock radius", shock)):
+    for k, label, exact, tol in ((0, "post-shock density (0.05 < r < 0.15 m)", rho_post, 0.01), (1, "shock radius", shock, 0.02)):
         p, limit, gci = _order_limit_gci([r[k] for r in results])
-        rows += [_near(name, f"{label} extrapolated to h -> 0", limit, exact, 0.02, "kg/m^3" if k == 0 else "m",
-                       source + "; within 2 %"),
+        rows += [_near(name, f"{label} extrapolated to h -> 0", limit, exact, tol, "kg/m^3" if k == 0 else "m",
+                       source + f"; within {100 * tol:g} %"),
                  Check(name, f"observed order of the {label}", p, 1.0, 0.7, 1.3, "1",
                        "1: first order at a shock with wall heating")]
-    last = results[-1]
+    last, errors = results[-1], [abs(r[3]) for r in results]
     return rows + [_near(name, f"pre-shock density at r = 0.3 m ({meshes[-1]} zones)", last[2], float(pre(0.3)), 0.005,
                          "kg/m^3", source),
-                   _below(name, f"|energy error| ({meshes[-1]} zones)", abs(last[3]), 0.01, "1", "conservation")]
+                   _below(name, f"|energy error| ({meshes[-1]} zones)", errors[-1], 0.005, "1", "conservation"),
+                   _below(name, f"|energy error| at {meshes[-1]} over {meshes[0]} zones", errors[-1] / errors[0], 1.0, "1",
+                          "the energy error falls with the mesh (a time-centred viscous work)")]
 
 
 # ------------------------------------------------------------------ contact: Hertz, Coulomb friction, momentum
@@ -151,10 +155,12 @@ def dashpot_reflection(h=0.005):
     rollers: the reflected amplitude over the incident one, measured as the largest difference of the node
     velocities from those of a column twice as long (which the pulse has not left) once the pulse has entered
     the dashpot. The continuum's reflection is 0; the discrete one is what the time integration of the dashpot
-    leaves: the solver takes it implicitly (backward Euler in the node update), first order in the step, and a
-    1-D lumped chain with the same update (``chain_reference.dashpot_reflection``) reflects 3.6 and 1.8 % of
-    pulses 20 and 40 elements wide, against 0.16 and 0.07 % with a centred (trapezoidal) dashpot. The accepted
-    bound is that chain's reflection plus a quarter. A held bottom (the control) reflects nearly all."""
+    leaves: the solver takes it at the mean of the old and new velocity (trapezoidal, second order in the step).
+    With the backward-Euler dashpot it had before, the column reflected 3.55 and 1.70 % of pulses 20 and 40
+    elements wide, as a 1-D lumped chain with that update does (``chain_reference.dashpot_reflection``: 3.6 and
+    1.8 %); the chain with the trapezoidal update reflects 0.16 and 0.07 %, and the column about 0.18 and 0.11 % (its
+    bulk viscosity and lumped boundary mass add to the chain's). The accepted bound is 0.5 %; the chain's value is
+    in the source text. A held bottom (the control) reflects nearly all."""
     name = "non-reflecting boundary: plane sin^2 pulse at normal incidence (uniaxial strain, 5 mm elements)"
     rows = []
     for per_pulse, bottom in ((20, "non_reflecting"), (40, "non_reflecting"), (20, "roller")):
@@ -169,10 +175,10 @@ def dashpot_reflection(h=0.005):
             rows.append(_near(name, f"reflected / incident amplitude, bottom held (control, {per_pulse} elements per pulse)",
                               R, 1.0, 0.15, "1", "1: total reflection (less the discrete dispersion and viscosity)"))
         else:
-            chain = chain_reference.dashpot_reflection(per_pulse)
+            chain = chain_reference.dashpot_reflection(per_pulse, centred=True)
             rows.append(Check(name, f"reflected / incident amplitude ({per_pulse} elements per pulse)", R, 0.0, 0.0,
-                              1.25 * chain, "1", "0 (Lysmer dashpot, normal incidence); bound: the discrete reflection of "
-                              "the same implicit dashpot in a 1-D lumped chain (fe.chain_reference), plus a quarter"))
+                              0.005, "1", f"0 (Lysmer dashpot, normal incidence); bound 0.5 %; the same trapezoidal "
+                              f"dashpot in a 1-D lumped chain (fe.chain_reference) reflects {100 * chain:.2f} %"))
     return rows
 
 

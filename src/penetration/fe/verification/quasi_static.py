@@ -27,19 +27,25 @@ RADIUS = 0.02          # m, shank radius of the driven ogive
 PSI = 3.0              # CRH of the ogive
 TRAVEL = 14.0          # shank radii driven
 STEADY_FROM = 8.0      # shank radii of depth after which the force is steady (the nose, 3.3 a long, well buried)
+# shank radii: the target's radius and depth. Its lateral and bottom boundaries are dashpots, which carry no static
+# load: a 15 x 20 target resisted 380 MPa at 6 across, a 30 x 40 one 465 and a 60 x 80 one 476 MPa (+2 %)
+DOMAIN = (60.0, 80.0)
 
 
 def driven_ogive(across: float, hole: float, v: float, material: HJC | None = None, outputs: int = 200,
-                 crater_depth: float | None = 4 * RADIUS, guide: bool = False) -> tuple[Model, Projectile]:
+                 crater_depth: float | None = 4 * RADIUS, guide: bool = False,
+                 domain: tuple[float, float] = DOMAIN) -> tuple[Model, Projectile]:
     """The model and projectile of the driven check: the CRH 3 ogive (RADIUS) as a 1e6 kg body at ``v`` (its speed
     stays within 1e-4 of v), the erosion-free target with ``across`` elements across the shank radius and a pilot
     hole of ``hole`` shank radii, to TRAVEL radii of travel with ``outputs`` output samples; ``crater_depth``: the
     guard's crater-debris depth (None: a lost shape anywhere below the face stops the run); ``guide``: a rigid guide
-    fills the pilot hole (Controls.pilot_guide)."""
+    fills the pilot hole (Controls.pilot_guide); ``domain``: the target's radius and depth in shank radii (its
+    lateral and bottom surfaces non-reflecting, which carry no static load: at a driven speed a target of finite
+    size)."""
     a = RADIUS
     zeta, rho = body_outline(Ogive(PSI, a), 20 * a)
     end = TRAVEL * a / v
-    g = build(MeshSpec(a / across, 3 * a, 16 * a, 15 * a, 20 * a, 1.15, pilot_hole=hole * a, opened_radius=a))
+    g = build(MeshSpec(a / across, 3 * a, 16 * a, domain[0] * a, domain[1] * a, 1.15, pilot_hole=hole * a, opened_radius=a))
     free = ErosionFree(rezone_radius=8 * a, eject_height=a, crater_depth=crater_depth, pilot_guide=guide)
     m = Model(g, material or HJC(), Controls(erosion_free=free, guard=True, drop_free_nodes=False,
                                             lateral="non_reflecting", bottom="non_reflecting", end_time=end,
@@ -48,11 +54,12 @@ def driven_ogive(across: float, hole: float, v: float, material: HJC | None = No
 
 
 def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: HJC | None = None,
-                 guide: bool = False) -> dict:
+                 guide: bool = False, domain: tuple[float, float] = DOMAIN) -> dict:
     """The steady axial force over pi a^2 (Pa, compression positive: mean and standard deviation over the output
     samples beyond STEADY_FROM radii of depth) of the ogive driven at ``v`` (m/s) into the erosion-free target with
     ``across`` elements across its shank radius and a pilot hole of ``hole`` shank radii, the hole filled by the rigid
-    guide if ``guide`` (as the study's scenes have it); with what the run cost. A run that stops (solver.Unstable)
+    guide if ``guide`` (as the study's scenes have it), in a target of ``domain`` (radius, depth in shank radii);
+    with what the run cost. A run that stops (solver.Unstable)
     gives status "stopped", its diagnostic and no force."""
     if not (math.isfinite(across) and across >= 2):
         raise ValueError(f"quasi-static force: across = {across}; allowed: >= 2 elements across the shank radius")
@@ -62,9 +69,9 @@ def driven_force(across: float, hole: float = 0.25, v: float = 40.0, material: H
         raise ValueError(f"quasi-static force: v = {v} m/s; allowed: 0 < v <= 200 m/s (a low, driven speed)")
     a = RADIUS
     t0 = time.perf_counter()
-    m, p = driven_ogive(across, hole, v, material, guide=guide)
+    m, p = driven_ogive(across, hole, v, material, guide=guide, domain=domain)
     base = {"elements_across": float(across), "pilot_hole": float(hole), "pilot_guide": bool(guide),
-            "velocity_ms": float(v)}
+            "velocity_ms": float(v), "domain_radius_over_a": float(domain[0]), "domain_depth_over_a": float(domain[1])}
     try:
         res = run(m, p)
     except Unstable as stop:   # a stopped run is a result of the check: where and when, no force
