@@ -356,6 +356,19 @@ table(pd.concat([diff, fe_diff])[lambda d: d.status == "paper-inconsistent"][["i
                                                                             "status"]])
 
 # %% [markdown]
+# ### The paper's Table 3 read through Eq 9
+#
+# An inference on the paper's own numbers (no model of ours): Eq 9's N* and S fitted per nose, in ln depth, through
+# the four depths of each Table 3 column (`figures/paper_eq9_effective.csv`). A frictionless rigid nose changes only
+# N* from one nose to another; an effective S that differs between noses says that the column's nose effect acts
+# like a change of the static resistance.
+
+# %%
+eq9 = pd.read_csv(FIG / "paper_eq9_effective.csv")
+table(eq9[["column", "nose", "nstar_of_nose", "nstar_effective", "S_effective", "S_effective_over_crh3",
+           "rms_ln_residual", "max_abs_ln_residual"]])
+
+# %% [markdown]
 # ## Every figure and table of the paper
 #
 # For each: what the paper shows, our rendering (the paper's stated values overlaid where any exist), the

@@ -661,6 +661,17 @@ def claims(read) -> str:
             "paper's ranking of each contrast: " + "; ".join(free) + f" (`{path}`). " + check + "\n")
 
 
+def paper_eq9(read) -> str:
+    """Eq 9's effective N* and S per nose through each Table 3 column (figures/paper_eq9_effective.csv)."""
+    rows = _rows(read, "figures/paper_eq9_effective.csv")
+    lines = ["| Table 3 column | nose | N* of the nose | effective N* | effective S | S over CRH 3's | rms ln residual |",
+             "|---|---|---|---|---|---|---|"]
+    lines += [f"| {r['column']} | {r['nose']} | {float(r['nstar_of_nose']):.4f} | {float(r['nstar_effective']):.4f} | "
+              f"{float(r['S_effective']):.3f} | {float(r['S_effective_over_crh3']):.3f} | "
+              f"{100 * float(r['rms_ln_residual']):.2f} % |" for r in rows]
+    return "\n".join(lines) + "\n"
+
+
 def studies(read) -> str:
     """The research studies as workflow/studies.yaml lists them: name, what each asks, its outputs (patterns)."""
     import yaml
@@ -671,7 +682,7 @@ def studies(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"claims": claims, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+BLOCKS = {"claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:
