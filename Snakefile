@@ -50,6 +50,7 @@ REPORT_INPUTS = [
 # by the report from disk, compared by `make check-studies` (their classes: `studies` in workflow/check.yaml).
 RESEARCH = study_outputs("workflow/studies.yaml", "workflow/schemas/studies.schema.json", {
     "profile": ["full", "ci"], "band": BAND_PROFILES, "shot": list(config["fe_erosion_free"]["window"]["shots"]),
+    "t3shot": list(config["fe_realisations"]["window"]["shots"]),
     "fs": [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]]}, CHECK_STUDIES)
 STUDY_OUTPUTS = [path for paths in RESEARCH.values() for path in paths]
 

@@ -22,3 +22,19 @@ use rule cavity_variant_contrasts as nose_contrasts_data with:
     log: "results/logs/nose_contrasts_data.log",
 
 
+
+
+# The verdict on the paper's nose contrasts, one table: every model's contrast +- its numerical uncertainty, the
+# unstated inputs' spread apart, the paper's value (reads the studies' committed outputs; config verdict).
+rule verdict:
+    input: **task("tasks.contrasts"), table="figures/nose_contrasts_table.csv",
+    output: csv="figures/verdict.csv",
+    params: sensitivity=study_input("figures/cavity_table3_sensitivity.csv"),
+            eroding=study_input("figures/fe/contrast_extrapolation.csv"),
+            chaos=study_input("figures/fe/erosion_free/chaos.csv"), unstated=study_input("figures/fe/unstated_inputs.csv"),
+            provenance=config["verdict"]["provenance"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/verdict.tsv"
+    log: "results/logs/verdict.log",
+    script: "../scripts/run_task.py"

@@ -261,3 +261,117 @@ rule fe_window_study:
     log: "results/logs/fe_window_study_{profile}.log",
     script: "../scripts/run_task.py"
 
+
+
+# Realisations of the FE chaos (config fe_realisations): a scene's shot struck at v (1 + member velocity_step), member
+# >= 1 (member 0 is the scene's own shot, rule fe_shot), and the committed pieces the studies read: one per cell (a
+# scene at a profile), velocity and member, its noses' summaries.
+REAL = config["fe_realisations"]
+REAL_UNSTATED = REAL["unstated"]
+
+
+rule fe_realisation:
+    input: **task("tasks.fe"), **GEOMETRY_RESULTS, reference=config["reference"],
+           cal=fe_shot_calibration, **scene_input("workflow/scenes/fe/{scene}.yaml"), schema=SCENE_SCHEMA,
+    output: json="results/fe/{profile}/{scene}/{nose}_{velocity}_m{member}.json",
+    params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile, nose=lambda w: w.nose,
+            velocity=lambda w: w.velocity, member=lambda w: w.member, velocity_step=REAL["velocity_step"],
+    wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)),
+                          nose="|".join(sorted({n for s in FE_SCENES.values() for n, _ in s}, key=len, reverse=True)),
+                          member=r"[1-9][0-9]*",
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/fe_realisation_{profile}_{scene}_{nose}_{velocity}_m{member}.tsv"
+    log: "results/logs/fe_realisation_{profile}_{scene}_{nose}_{velocity}_m{member}.log",
+    script: "../scripts/run_task.py"
+
+
+def realisation_shots(scene, profile, velocity, member):
+    """The shot files of a piece: the scene's noses at one velocity, one member (0: the scene's own shots)."""
+    tail = "" if int(member) == 0 else f"_m{int(member)}"
+    return [f"results/fe/{profile}/{FE_OWNER[(scene, n, v)]}/{n}_{v}{tail}.json"
+            for n, v in FE_SCENES[scene] if float(v) == float(velocity)]
+
+
+REAL_PIECE = "figures/fe/realisations/{profile}/{scene}/v{velocity}_m{member}.json"
+
+
+def real_pieces(scene, profiles):
+    """The pieces of a scene at these profiles: every velocity of fe_realisations and every member."""
+    return [REAL_PIECE.format(profile=p, scene=scene, velocity=f"{v:g}", member=k)
+            for p in profiles for v in REAL["velocities"] for k in range(REAL["members"])]
+
+
+REAL_PIECE_INPUTS = record_inputs("tasks.fe_chaos", REAL_PIECE,
+                                  shots=lambda w: realisation_shots(w.scene, w.profile, w.velocity, w.member))
+
+
+rule fe_realisation_piece:
+    input: **REAL_PIECE_INPUTS,
+    output: json=REAL_PIECE,
+    params: piece=lambda w: f"{w.profile}/{w.scene}/v{w.velocity}_m{w.member}",
+            expected=lambda w: len(realisation_shots(w.scene, w.profile, w.velocity, w.member)),
+            member=lambda w: int(w.member), velocity_step=REAL["velocity_step"],
+    wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)), member=r"[0-9]+",
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_realisation_piece_{profile}_{scene}_v{velocity}_m{member}.tsv"
+    log: "results/logs/fe_realisation_piece_{profile}_{scene}_v{velocity}_m{member}.log",
+    script: "../scripts/run_task.py"
+
+
+CHAOS = REAL["chaos"]
+CHAOS_PIECES = real_pieces(CHAOS["scene"], FREE_PROFILES)
+
+
+# The erosion-free grid study with the chaos in its error model: every mesh of fe_erosion_free.profiles, the
+# realisations' mean and standard deviation per cell, the mean against element size with the chaos as its error.
+use rule fe_fig12 as fe_erosion_free_chaos with:
+    input: **task("tasks.fe_chaos"), reference=config["reference"], pieces=uncommitted(CHAOS_PIECES),
+    output: png=report("figures/fe/erosion_free/chaos.png", caption="../report/captions/fe_erosion_free_chaos.rst", category="Finite-element level"),
+            csv="figures/fe/erosion_free/chaos.csv", cells="figures/fe/erosion_free/chaos_cells.csv",
+            shots="figures/fe/erosion_free/chaos_shots.csv",
+    params: dpi=config["figures"]["dpi"], across=config["fe_erosion_free"]["profiles"],
+            pieces=[study_input(p) for p in CHAOS_PIECES], goals=CHAOS["goals"], noise_sigmas=CHAOS["noise_sigmas"],
+            members=REAL["members"],
+    benchmark: "results/benchmarks/fe_erosion_free_chaos.tsv"
+    log: "results/logs/fe_erosion_free_chaos.log",
+
+
+UNSTATED_PIECES = {t: [p for s in c["scenes"] for p in real_pieces(s, [c["profile"]])] for t, c in REAL_UNSTATED.items()}
+UNSTATED_TARGETS = {t: {"profile": c["profile"], "scenes": c["scenes"], "pieces": [study_input(p) for p in UNSTATED_PIECES[t]]}
+                    for t, c in REAL_UNSTATED.items()}
+
+
+# The inputs the paper does not state: nose friction on both FE targets, the paper's failure strain as stated on the
+# eroding one; each scene's contrasts over its realisations beside its target's baseline.
+rule fe_unstated_inputs:
+    input: **task("tasks.fe_chaos"), pieces=uncommitted([p for ps in UNSTATED_PIECES.values() for p in ps]),
+           scenes=[f"workflow/scenes/fe/{s}.yaml" for c in REAL_UNSTATED.values() for s in c["scenes"]],
+           schema=SCENE_SCHEMA,
+    output: csv="figures/fe/unstated_inputs.csv", shots="figures/fe/unstated_inputs_shots.csv",
+    params: targets=UNSTATED_TARGETS, members=REAL["members"],
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/fe_unstated_inputs.tsv"
+    log: "results/logs/fe_unstated_inputs.log",
+    script: "../scripts/run_task.py"
+
+
+# The moving window of the eroding target at 1200 m/s (a study): Table 3's shots of fe_realisations.window at the full
+# mesh, with the window and with the whole domain (the task of fe_erosion_free_window).
+T3_WINDOW = REAL["window"]
+
+
+use rule fe_erosion_free_window as fe_table3_window with:
+    input: **task("tasks.fe_window"), **GEOMETRY_RESULTS, reference=config["reference"], cal=fe_calibration("full"),
+           **scene_input("workflow/scenes/fe/table3.yaml"), schema=SCENE_SCHEMA,
+    output: runs="figures/fe/full/window_table3_{nose}_{velocity}.csv",
+            summary="figures/fe/full/window_table3_{nose}_{velocity}_summary.csv",
+            timing="figures/timing/fe_table3_window_{nose}_{velocity}.csv",
+    params: cfg=fe_cfg("full"), hjc=config["concrete"], profile="full",
+            nose=lambda w: w.nose, velocity=lambda w: w.velocity, members=T3_WINDOW["members"],
+            velocity_step=config["fe_window"]["velocity_step"], confidence=config["fe_window"]["confidence"],
+            goal_pct=config["fe_window"]["goal_pct"],
+    benchmark: "results/benchmarks/fe_table3_window_{nose}_{velocity}.tsv"
+    log: "results/logs/fe_table3_window_{nose}_{velocity}.log",

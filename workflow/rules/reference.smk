@@ -21,6 +21,7 @@ rule diff:
         cal_cavity="results/calibration/cavity_do1.json",
         contrasts="figures/nose_contrasts.csv",
         contrast_table="figures/nose_contrasts_table.csv",
+        verdict="figures/verdict.csv",
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
     params: erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
             erosion_free_calibrated=study_input("figures/fe/erosion_free/calibrated.csv"),

@@ -672,6 +672,57 @@ def paper_eq9(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _num(text) -> float:
+    """A CSV cell as a float (an empty cell: nan)."""
+    return float(text) if text not in ("", None) else float("nan")
+
+
+def verdict(read) -> str:
+    """The verdict on the paper's nose contrasts (figures/verdict.csv): one row per contrast and velocity, one column
+    per model (value +- its numerical uncertainty, the unstated inputs' range apart), the paper's value; then one
+    paragraph counting, per model, the cells whose interval holds the paper's value and those an unstated input
+    reaches."""
+    from ..paper.verdict import SHORT
+
+    rows = _rows(read, "figures/verdict.csv")
+    models = list(dict.fromkeys(r["model"] for r in rows))
+    cells = list(dict.fromkeys((r["contrast"], r["velocity_ms"]) for r in rows))
+    at = {(r["contrast"], r["velocity_ms"], r["model"]): r for r in rows}
+
+    def cell(r):
+        if r is None:
+            return "—"
+        value = _num(r["value"])
+        if value != value:
+            return "pending"
+        u = _num(r["uncertainty"])
+        text = f"{value:.3f}" + (f" ± {u:.3f}" if u > 0 else "")
+        low, high = _num(r["unstated_low"]), _num(r["unstated_high"])
+        if low == low:
+            text += f" [{low:.3f}–{high:.3f}]"
+        return text
+
+    paper = {(r["contrast"], r["velocity_ms"]): _num(r["paper_sim_ratio"]) for r in rows}
+    lines = ["| contrast | m/s | paper | " + " | ".join(SHORT.get(m, m) for m in models) + " |",
+             "|---" * (len(models) + 3) + "|"]
+    lines += [f"| {c} | {float(v):g} | {paper[(c, v)]:.3f} | " + " | ".join(cell(at.get((c, v, m))) for m in models)
+              + " |" for c, v in cells]
+    counts = []
+    for m in models:
+        mine = [r for r in rows if r["model"] == m and _num(r["value"]) == _num(r["value"])]
+        if not mine:
+            counts.append(f"{SHORT.get(m, m)}: pending")
+            continue
+        inside = sum(r["paper_within_uncertainty"] == "True" for r in mine)
+        reach = sorted({x for r in mine for x in r["reached_by"].split("; ") if x and x != "none"})
+        counts.append(f"{m}: the paper's value within ± in {inside} of {len(mine)} cells"
+                      + (f", reached by an unstated input ({', '.join(reach)}) in "
+                         f"{sum(bool(r['reached_by']) and r['reached_by'] != 'none' for r in mine)}" if reach else ""))
+    return ("\n".join(lines) + "\n\nBrackets: the range over the unstated inputs (friction, failure strain, the cavity "
+            "level's conventions), shown apart from the ± of the model's numerics (chaos and mesh). " + "; ".join(counts)
+            + " (`figures/verdict.csv`, each model's source in its `provenance` column).\n")
+
+
 def studies(read) -> str:
     """The research studies as workflow/studies.yaml lists them: name, what each asks, its outputs (patterns)."""
     import yaml
@@ -682,7 +733,7 @@ def studies(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+BLOCKS = {"verdict": verdict, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:

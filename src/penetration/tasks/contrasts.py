@@ -73,3 +73,19 @@ def cavity_variant_contrasts(inputs, outputs, params):
         variants=("ratio", "size"), min_ratio=("ratio", "min"), max_ratio=("ratio", "max"),
         min_gain_m=("gain_m", "min"), max_gain_m=("gain_m", "max")).reset_index()
     write_csv(rng, outputs.csv)
+
+
+@task
+def verdict(inputs, outputs, params):
+    """The verdict on the paper's nose contrasts, one table (paper.verdict), from the nose-contrast table of the
+    paper's build and the studies' committed outputs (params: path and digest; a missing one gives pending rows)."""
+    from ..paper.verdict import verdict_rows
+
+    def study(p):
+        return None if p["sha256"] == "missing" else pd.read_csv(p["path"])
+    sensitivity = study(params.sensitivity)
+    if sensitivity is None:
+        raise FileNotFoundError(f"{params.sensitivity['path']} is missing: build it with `snakemake -c2 studies`")
+    table = verdict_rows(pd.read_csv(inputs.table), sensitivity, study(params.eroding), study(params.chaos),
+                         study(params.unstated), params.provenance)
+    write_csv(table, outputs.csv)

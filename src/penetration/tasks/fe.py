@@ -151,7 +151,7 @@ def scene_shot(inputs, params, velocity_factor=1.0, domain=None):
                "element_size": spec.settings.element_size, "failure_strain": notes["failure_strain"],
                "failure_strain_provenance": notes["failure_strain_provenance"],
                "target": dataclasses.asdict(spec.target), "domain": domain_of(spec.settings),
-               "material_switches": notes["material_switches"], "expected_depth_m": expected, "cutoff_hz": spec.settings.cutoff_hz, **r.summary()}
+               "material_switches": notes["material_switches"], "friction": spec.friction, "expected_depth_m": expected, "cutoff_hz": spec.settings.cutoff_hz, **r.summary()}
     if sc.fe.get("strength_scale") == "calibrated":
         summary.update(strength_scale=notes["strength_scale"], strength_scale_provenance=notes["strength_scale_provenance"])
     return summary, r, spec, sc
@@ -231,6 +231,22 @@ def fe_ensemble_shot(inputs, outputs, params):
     if not 0.0 < step <= 1e-6:
         raise ValueError(f"fe_ensemble.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
                          "the chaos, not a change of the shot)")
+    factor = 1.0 + member * step
+    summary, r, spec, sc = scene_shot(inputs, params, factor)
+    write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
+                "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
+
+
+@task
+def fe_realisation(inputs, outputs, params):
+    """A realisation of any FE scene's shot (config fe_realisations): the shot at v (1 + member x velocity_step),
+    member >= 1 (member 0 is the scene's own shot); its summary with the member, the factor and the final velocity."""
+    member, step = int(params.member), float(params.velocity_step)
+    if member < 1:
+        raise ValueError(f"realisation member {member}; allowed: >= 1 (member 0 is the scene's own shot)")
+    if not 0.0 < step <= 1e-6:
+        raise ValueError(f"fe_realisations.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation "
+                         "of the chaos, not a change of the shot)")
     factor = 1.0 + member * step
     summary, r, spec, sc = scene_shot(inputs, params, factor)
     write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,

@@ -42,6 +42,13 @@ def fe_erosion_free_window(inputs, outputs, params):
 
 
 @task
+def fe_table3_window(inputs, outputs, params):
+    """One Table 3 shot of the eroding target (``params.nose`` at ``params.velocity``, the failure strain calibrated on
+    DO1 at the mesh) with the moving window and with the whole domain, ``members`` realisations each."""
+    window_study(inputs, outputs, params, params.nose)
+
+
+@task
 def fe_target_radius(inputs, outputs, params):
     """The semi-infinite target's radius (its lateral boundary non-reflecting: a dashpot, which carries no static
     load, so that a target of finite radius confines the concrete less than an infinite one): each shot of

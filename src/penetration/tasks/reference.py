@@ -30,6 +30,7 @@ import numpy as np
 import pandas as pd
 
 from ..paper import claims as claim_rows, diff as diff_rows, reference
+from ..paper.verdict import verdict_diff_rows
 from ..pipeline.io import committed_study, load_json, task, write_csv, write_text
 
 
@@ -93,7 +94,8 @@ def diff(inputs, outputs, params):
                                           committed_study(params.eroding).to_dict("records"),
                                           pd.read_csv(inputs.contrast_table).to_dict("records"))
             + diff_rows.erosion_free_depth_rows(refs, committed_study(params.erosion_free).to_dict("records"),
-                                                committed_study(params.erosion_free_calibrated).to_dict("records")))
+                                                committed_study(params.erosion_free_calibrated).to_dict("records"))
+            + verdict_diff_rows(pd.read_csv(inputs.verdict)))
     frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=diff_rows.COLUMNS)
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")
