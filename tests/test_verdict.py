@@ -34,10 +34,11 @@ def chaos(value=0.995, u=0.008, holds=True):
                           "meshes": 5, "realisations_min": 3, "fit_holds": holds}])
 
 
-def unstated(change_points):
-    return pd.DataFrame([{"target": "erosion_free", "scene": s, "baseline": s == "a", "input": "friction", "setting": mu,
-                          "contrast": "DO/CRH 4.5", "velocity_ms": 500.0, "change_points": c}
-                         for s, mu, c in (("a", 0.0, 0.0), ("b", 0.1, change_points))])
+def unstated(change_points, ejection=0.3, resolved=False):
+    return pd.DataFrame([{"target": "erosion_free", "scene": s, "baseline": s == "a", "input": i, "setting": mu,
+                          "contrast": "DO/CRH 4.5", "velocity_ms": 500.0, "change_points": c, "change_resolved": r}
+                         for s, i, mu, c, r in (("a", "friction", 0.0, 0.0, False), ("b", "friction", 0.1, change_points, True),
+                                                ("e", "ejection scale", 2.0, ejection, resolved))])
 
 
 def rows(**kw):
@@ -82,3 +83,11 @@ def test_diff_statuses_follow_the_interval_and_the_calibration():
     assert st[f"DO/CRH 4.5 ({V.CAVITY})"] == "agrees-after-calibration"     # within 2 points, calibrated on DO1
     assert st[f"DO/CRH 4.5 ({V.ERODING})"] == "agrees-after-calibration"
     assert st[f"DO/CRH 4.5 ({V.FREE})"] == "undecided"                      # +-5 points holds values beyond 2
+
+
+def test_a_numerical_control_joins_the_uncertainty_only_when_resolved():
+    quiet = pick(rows(), V.FREE)
+    assert "ejection" not in quiet.unstated_inputs and math.isclose(quiet.uncertainty, 0.008)
+    f = V.verdict_rows(table(), sensitivity(1.08), eroding(), chaos(), unstated(8.0, ejection=-1.5, resolved=True), {})
+    loud = pick(f, V.FREE)
+    assert math.isclose(loud.uncertainty, math.hypot(0.008, 0.015)) and "ejection scale 2" in loud.uncertainty_basis

@@ -31,7 +31,9 @@ rule verdict:
     output: csv="figures/verdict.csv",
     params: sensitivity=study_input("figures/cavity_table3_sensitivity.csv"),
             eroding=study_input("figures/fe/contrast_extrapolation.csv"),
-            chaos=study_input("figures/fe/erosion_free/chaos.csv"), unstated=study_input("figures/fe/unstated_inputs.csv"),
+            chaos=[study_input(f"figures/fe/erosion_free/chaos_v{v:g}.csv") for v in config["fe_realisations"]["velocities"]],
+            unstated=[study_input(f"figures/fe/unstated_{t}_v{v:g}.csv") for t in config["fe_realisations"]["unstated"]
+                      for v in config["fe_realisations"]["velocities"]],
             provenance=config["verdict"]["provenance"],
     threads: 1
     resources: mem_mb=1000, runtime=5

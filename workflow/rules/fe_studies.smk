@@ -321,40 +321,53 @@ rule fe_realisation_piece:
 
 
 CHAOS = REAL["chaos"]
-CHAOS_PIECES = real_pieces(CHAOS["scene"], FREE_PROFILES)
+REAL_VELOCITIES = [f"{v:g}" for v in REAL["velocities"]]
 
 
-# The erosion-free grid study with the chaos in its error model: every mesh of fe_erosion_free.profiles, the
-# realisations' mean and standard deviation per cell, the mean against element size with the chaos as its error.
+def real_pieces_at(scene, profiles, velocity):
+    """The pieces of a scene at these profiles and one velocity, every member."""
+    return [REAL_PIECE.format(profile=p, scene=scene, velocity=velocity, member=k)
+            for p in profiles for k in range(REAL["members"])]
+
+
+# The erosion-free grid study with the chaos in its error model, one velocity at a time (a study resumes velocity by
+# velocity): every mesh of fe_erosion_free.profiles, the realisations' mean and standard deviation per cell, the
+# mean against element size with the chaos as its error.
 use rule fe_fig12 as fe_erosion_free_chaos with:
-    input: **task("tasks.fe_chaos"), reference=config["reference"], pieces=uncommitted(CHAOS_PIECES),
-    output: png=report("figures/fe/erosion_free/chaos.png", caption="../report/captions/fe_erosion_free_chaos.rst", category="Finite-element level"),
-            csv="figures/fe/erosion_free/chaos.csv", cells="figures/fe/erosion_free/chaos_cells.csv",
-            shots="figures/fe/erosion_free/chaos_shots.csv",
+    input: **task("tasks.fe_chaos"), reference=config["reference"],
+           pieces=lambda w: [p for p in real_pieces_at(CHAOS["scene"], FREE_PROFILES, w.velocity) if not Path(p).exists()],
+    output: png=report("figures/fe/erosion_free/chaos_v{velocity}.png", caption="../report/captions/fe_erosion_free_chaos.rst", category="Finite-element level"),
+            csv="figures/fe/erosion_free/chaos_v{velocity}.csv", cells="figures/fe/erosion_free/chaos_v{velocity}_cells.csv",
+            shots="figures/fe/erosion_free/chaos_v{velocity}_shots.csv",
     params: dpi=config["figures"]["dpi"], across=config["fe_erosion_free"]["profiles"],
-            pieces=[study_input(p) for p in CHAOS_PIECES], goals=CHAOS["goals"], noise_sigmas=CHAOS["noise_sigmas"],
-            members=REAL["members"],
-    benchmark: "results/benchmarks/fe_erosion_free_chaos.tsv"
-    log: "results/logs/fe_erosion_free_chaos.log",
+            pieces=lambda w: [study_input(p) for p in real_pieces_at(CHAOS["scene"], FREE_PROFILES, w.velocity)],
+            goals=CHAOS["goals"], noise_sigmas=CHAOS["noise_sigmas"], members=REAL["members"],
+    wildcard_constraints: velocity="|".join(REAL_VELOCITIES),
+    benchmark: "results/benchmarks/fe_erosion_free_chaos_v{velocity}.tsv"
+    log: "results/logs/fe_erosion_free_chaos_v{velocity}.log",
 
 
-UNSTATED_PIECES = {t: [p for s in c["scenes"] for p in real_pieces(s, [c["profile"]])] for t, c in REAL_UNSTATED.items()}
-UNSTATED_TARGETS = {t: {"profile": c["profile"], "scenes": c["scenes"], "pieces": [study_input(p) for p in UNSTATED_PIECES[t]]}
-                    for t, c in REAL_UNSTATED.items()}
+def unstated_pieces(target, velocity):
+    c = REAL_UNSTATED[target]
+    return [p for s in c["scenes"] for p in real_pieces_at(s, [c["profile"]], velocity)]
 
 
-# The inputs the paper does not state: nose friction on both FE targets, the paper's failure strain as stated on the
-# eroding one; each scene's contrasts over its realisations beside its target's baseline.
+# The inputs the paper does not state, one target and velocity at a time: nose friction on both FE targets, the
+# paper's failure strain as stated on the eroding one, the lip's ejection on the erosion-free one; each scene's
+# contrasts over its realisations beside its target's baseline.
 rule fe_unstated_inputs:
-    input: **task("tasks.fe_chaos"), pieces=uncommitted([p for ps in UNSTATED_PIECES.values() for p in ps]),
-           scenes=[f"workflow/scenes/fe/{s}.yaml" for c in REAL_UNSTATED.values() for s in c["scenes"]],
+    input: **task("tasks.fe_chaos"), reference=config["reference"],
+           pieces=lambda w: [p for p in unstated_pieces(w.target, w.velocity) if not Path(p).exists()],
+           scenes=lambda w: [f"workflow/scenes/fe/{s}.yaml" for s in REAL_UNSTATED[w.target]["scenes"]],
            schema=SCENE_SCHEMA,
-    output: csv="figures/fe/unstated_inputs.csv", shots="figures/fe/unstated_inputs_shots.csv",
-    params: targets=UNSTATED_TARGETS, members=REAL["members"],
+    output: csv="figures/fe/unstated_{target}_v{velocity}.csv", shots="figures/fe/unstated_{target}_v{velocity}_shots.csv",
+    params: target=lambda w: w.target, scenes=lambda w: REAL_UNSTATED[w.target]["scenes"],
+            pieces=lambda w: [study_input(p) for p in unstated_pieces(w.target, w.velocity)],
+    wildcard_constraints: target="|".join(REAL_UNSTATED), velocity="|".join(REAL_VELOCITIES),
     threads: 1
     resources: mem_mb=1000, runtime=5
-    benchmark: "results/benchmarks/fe_unstated_inputs.tsv"
-    log: "results/logs/fe_unstated_inputs.log",
+    benchmark: "results/benchmarks/fe_unstated_inputs_{target}_v{velocity}.tsv"
+    log: "results/logs/fe_unstated_inputs_{target}_v{velocity}.log",
     script: "../scripts/run_task.py"
 
 

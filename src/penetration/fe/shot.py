@@ -53,8 +53,10 @@ def model_for(nose, settings: Settings, target: TargetSpec, material, expected_d
         # an element of the tunnel's wall that loses its shape behind the projectile's tail is wall debris
         given = controls.erosion_free or ErosionFree()
         crater = 4.0 * nose.radius if given.crater_depth is None else given.crater_depth
+        scale = target.ejection_scale   # > 1: the lip ejects more readily (thicker elements, nearer the face)
         free = replace(given, pilot_guide=target.pilot_guide, rezone_radius=2.0 * spec.core_radius,
-                       eject_height=nose.radius if given.eject_height is None else given.eject_height,
+                       eject_length=min(1.0, given.eject_length * scale),
+                       eject_height=(nose.radius if given.eject_height is None else given.eject_height) / scale,
                        crater_depth=crater,
                        crater_thin_after=(crater + settings.body_length if given.crater_thin_after is None
                                           else given.crater_thin_after),

@@ -99,6 +99,8 @@ class TargetSpec:
     formulation: str = "eroding"  # one of FORMULATIONS
     pilot_hole: float = 0.25     # erosion-free: the pilot hole's radius over the shank's (a study drives it to 0)
     pilot_guide: bool = False    # erosion-free: a rigid frictionless guide fills the hole (its wall cannot enter it)
+    ejection_scale: float = 1.0  # erosion-free: the lip ejects this many times as readily (its thinness threshold
+    #                              times it, its height threshold over it; a study halves and doubles it)
 
     def __post_init__(self):
         if self.kind not in ("semi_infinite", "block"):
@@ -111,6 +113,11 @@ class TargetSpec:
             raise ParameterError("fe target", "formulation", self.formulation, f"one of {FORMULATIONS}")
         if not (math.isfinite(self.pilot_hole) and 0.0 < self.pilot_hole < 1.0):
             raise ParameterError("fe target", "pilot_hole", self.pilot_hole, "0 < pilot_hole < 1 (of the shank radius)")
+        if not (math.isfinite(self.ejection_scale) and 0.1 <= self.ejection_scale <= 4.0):
+            raise ParameterError("fe target", "ejection_scale", self.ejection_scale, "0.1 <= ejection_scale <= 4")
+        if self.formulation != "erosion_free" and self.ejection_scale != 1.0:
+            raise ParameterError("fe target", "ejection_scale", self.ejection_scale,
+                                 "1 on an eroding target (nothing is ejected there; erosion_free only)")
         if not isinstance(self.pilot_guide, bool):
             raise ParameterError("fe target", "pilot_guide", self.pilot_guide, "true or false")
         for name in ("lateral", "bottom"):
@@ -120,14 +127,14 @@ class TargetSpec:
     @classmethod
     def from_scene(cls, fe, target_radius, block_depth):
         """A scene's target (its ``fe`` slice: target, target_radius, target_depth, lateral_boundary,
-        bottom_boundary, formulation, pilot_hole, pilot_guide): its kind's radius and depth (``target_radius``, the semi-infinite target's; the block's
+        bottom_boundary, formulation, pilot_hole, pilot_guide, ejection_scale): its kind's radius and depth (``target_radius``, the semi-infinite target's; the block's
         BLOCK_RADIUS and ``block_depth``) unless the scene sets them."""
         kind = fe.get("target", "semi_infinite")
         block = kind == "block"
         return cls(kind, fe.get("target_radius", BLOCK_RADIUS if block else target_radius),
                    fe.get("target_depth", block_depth if block else None),
                    fe.get("lateral_boundary"), fe.get("bottom_boundary"), fe.get("formulation", "eroding"),
-                   fe.get("pilot_hole", 0.25), fe.get("pilot_guide", False))
+                   fe.get("pilot_hole", 0.25), fe.get("pilot_guide", False), fe.get("ejection_scale", 1.0))
 
     def boundary(self, face):
         """The boundary of a face ('lateral' or 'bottom'): as set, else free for the block, non-reflecting else."""

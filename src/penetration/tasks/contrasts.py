@@ -78,14 +78,19 @@ def cavity_variant_contrasts(inputs, outputs, params):
 @task
 def verdict(inputs, outputs, params):
     """The verdict on the paper's nose contrasts, one table (paper.verdict), from the nose-contrast table of the
-    paper's build and the studies' committed outputs (params: path and digest; a missing one gives pending rows)."""
+    paper's build and the studies' committed outputs (params: path and digest; a missing one gives pending rows: the
+    chaos and unstated-input studies come one velocity and target at a time)."""
     from ..paper.verdict import verdict_rows
 
     def study(p):
         return None if p["sha256"] == "missing" else pd.read_csv(p["path"])
+
+    def studies(ps):   # the pieces of a study built so far (one per velocity or target), None if none is
+        frames = [f for f in (study(p) for p in ps) if f is not None]
+        return pd.concat(frames, ignore_index=True) if frames else None
     sensitivity = study(params.sensitivity)
     if sensitivity is None:
         raise FileNotFoundError(f"{params.sensitivity['path']} is missing: build it with `snakemake -c2 studies`")
-    table = verdict_rows(pd.read_csv(inputs.table), sensitivity, study(params.eroding), study(params.chaos),
-                         study(params.unstated), params.provenance)
+    table = verdict_rows(pd.read_csv(inputs.table), sensitivity, study(params.eroding), studies(params.chaos),
+                         studies(params.unstated), params.provenance)
     write_csv(table, outputs.csv)

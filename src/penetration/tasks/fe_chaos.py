@@ -3,8 +3,6 @@ pieces, the erosion-free target's grid study with the chaos in its error model a
 state (nose friction on both FE targets, the paper's failure strain as stated)."""
 from __future__ import annotations
 
-import pandas as pd
-
 from ..figures.fe_chaos import chaos_figure
 from ..paper.reference import TABLE3_NOSES, VELOCITIES, load_reference
 from ..pipeline.io import load_json, task, write_csv, write_json
@@ -59,31 +57,29 @@ def fe_erosion_free_chaos(inputs, outputs, params):
 
 
 def scene_setting(path):
-    """(input, setting) a scene of the unstated-inputs study sets: its nose friction, or its failure strain where it
-    states one (a number, not calibrated)."""
+    """(input, setting) a scene of the unstated-inputs study sets: its failure strain where it states one (a number,
+    not calibrated), its lip's ejection scale (a numerical control of the erosion-free target) where it sets one, else
+    its nose friction."""
     data = scene_data(path)
     fs = data.get("fe", {}).get("erosion_strain")
     if isinstance(fs, (int, float)):
         return "failure strain", float(fs)
+    if "ejection_scale" in data.get("fe", {}):
+        return "ejection scale", float(data["fe"]["ejection_scale"])
     return "friction", float(data.get("friction", 0.0))
 
 
 @task
 def fe_unstated_inputs(inputs, outputs, params):
-    """Each scene of each target (its baseline first) over its realisations: its contrasts and their change from the
-    baseline, beside the paper's simulated values."""
-    missing = [p["path"] for t in params.targets.values() for p in t["pieces"] if p["sha256"] == "missing"]
+    """Each scene of one target (its baseline first) at one velocity over its realisations: its contrasts and their
+    change from the baseline, beside the paper's simulated values."""
+    missing = [p["path"] for p in params.pieces if p["sha256"] == "missing"]
     if missing:
         raise FileNotFoundError(f"fe_unstated_inputs: {len(missing)} pieces missing, e.g. {missing[0]}")
     files = {scene_name(p): p for p in inputs.scenes}
-    settings, baselines, all_shots = {}, {}, []
-    for target, t in params.targets.items():
-        baselines[target] = t["scenes"][0]
-        for s in t["scenes"]:
-            settings[s] = (target, *scene_setting(files[s]))
-        all_shots.append(chaos.shot_rows(_pieces(t["pieces"])).assign(target=target))
-    shots = pd.concat(all_shots, ignore_index=True)
+    settings = {s: (params.target, *scene_setting(files[s])) for s in params.scenes}
+    shots = chaos.shot_rows(_pieces(params.pieces)).assign(target=params.target)
     cells = chaos.cell_rows(shots, ("scene", "profile", "element_size_m", "velocity_ms"))
-    rows = chaos.unstated_rows(cells, baselines, settings, paper_values(inputs.reference))
+    rows = chaos.unstated_rows(cells, {params.target: params.scenes[0]}, settings, paper_values(inputs.reference))
     write_csv(shots, outputs.shots)
     write_csv(rows, outputs.csv)
