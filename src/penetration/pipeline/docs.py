@@ -402,7 +402,9 @@ def erosion_free_status(read) -> str:
                                  f"across, hole {float(r['pilot_hole']):g}" for r in stopped) + ")"
     rest = [r for r in shots if r["status"] == "rest"]
     walled = [r for r in rest if float(r["wall_debris_mass_kg"]) > 0.0]
-    text += (f"; eroded mass at most {max(float(r['eroded_mass_kg']) for r in shots):g} kg; of the ejected, at most "
+    ejected = sorted(float(r["ejected_mass_kg"]) for r in rest)
+    text += (f"; eroded mass at most {max(float(r['eroded_mass_kg']) for r in shots):g} kg; ejected (stress-free from "
+             f"then on) {ejected[0]:.1f}-{ejected[-1]:.1f} kg a shot (median {ejected[len(ejected) // 2]:.1f} kg); of the ejected, at most "
              f"{max((float(r['crater_debris_mass_kg']) for r in rest), default=0.0):.2f} kg of crater debris in a shot, and wall debris "
              f"behind the tail in {len(walled)} shots"
              + (f" (at most {max(float(r['wall_debris_mass_kg']) for r in walled) * 1000:.1f} g)" if walled else "")
@@ -723,6 +725,39 @@ def verdict(read) -> str:
             + " (`figures/verdict.csv`, each model's source in its `provenance` column).\n")
 
 
+def erosion_free_chaos(read) -> str:
+    """The erosion-free grid study with the chaos in its error model (figures/fe/erosion_free/chaos_v*.csv): per
+    velocity and contrast the estimate at zero size +- U, the pooled chaos, whether the first-order line holds the
+    means, the status against the goal and, where it is missed, the next mesh and its cost; a velocity not yet run
+    says so."""
+    import yaml
+
+    cfg = yaml.safe_load(read("workflow/config.yaml"))["fe_realisations"]
+    lines = ["| m/s | contrast | finest mesh mean ± s.e. | pooled s.d. of one realisation | line holds the means "
+             "(p) | at zero size ± U | paper | status | next mesh, cost |", "|---|---|---|---|---|---|---|---|---|"]
+    missing, cost = [], []
+    for v in cfg["velocities"]:
+        path = f"figures/fe/erosion_free/chaos_v{v:g}.csv"
+        rows = [r for r in _rows_if_any(read, path) if r["kind"] == "contrast"]
+        if not rows:
+            missing.append(f"{v:g} m/s")
+            continue
+        shots = _rows_if_any(read, f"figures/fe/erosion_free/chaos_v{v:g}_shots.csv")
+        cost.append(f"{len(shots)} shots at {v:g} m/s, {sum(float(r['wall_time_s']) for r in shots) / 3600:.1f} h")
+        for r in rows:
+            nxt = (f"{float(r['next_elements_across']):g} across, {float(r['next_cell_hours']):.1f} h a cell"
+                   if r.get("next_elements_across") not in (None, "") else "—")
+            lines.append(f"| {float(r['velocity_ms']):g} | {r['quantity']} | {float(r['finest_mean']):.3f} ± "
+                         f"{float(r['finest_se']):.3f} | {float(r['sd_pooled']):.4f} | "
+                         f"{'yes' if r['fit_holds'] == 'True' else 'no'} ({float(r['fit_p']):.2f}) | "
+                         f"{float(r['estimate']):.3f} ± {float(r['uncertainty']):.3f} | {float(r['paper']):.3f} | "
+                         f"{r['status']} | {nxt} |")
+    tail = ("\nJob time (2 cores, wall): " + "; ".join(cost) + "." if cost else "")
+    tail += (f"\nNot yet run: {', '.join(missing)} (pieces under `figures/fe/realisations/`; "
+             "`snakemake -c2 figures/fe/erosion_free/chaos_v1200.csv` resumes them).\n" if missing else "\n")
+    return "\n".join(lines) + "\n" + tail
+
+
 def studies(read) -> str:
     """The research studies as workflow/studies.yaml lists them: name, what each asks, its outputs (patterns)."""
     import yaml
@@ -733,7 +768,7 @@ def studies(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"verdict": verdict, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
+BLOCKS = {"verdict": verdict, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory}
 
 
 def render(text: str, read) -> str:
