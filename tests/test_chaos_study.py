@@ -117,3 +117,38 @@ def test_unstated_rows_measure_a_change_against_the_baseline():
     assert np.allclose(t.change_points, 5.0 * 3.3 / 3.2, atol=1.0) and t.change_resolved.all()
     s = rows[rows.scene == "s"]
     assert (s.change_points == 0).all() and not s.change_resolved.any()
+
+
+def _rows_of(p, goals=GOALS):
+    shots = chaos.shot_rows(p, ACROSS)
+    cells = chaos.cell_rows(shots, ("scene", "profile", "elements_across", "element_size_m", "velocity_ms"))
+    return chaos.chaos_rows(cells, {}, goals, 2.0, shots[["elements_across", "wall_time_s", "velocity_ms"]], 3)
+
+
+def test_resolved_steps_give_richardson_and_unresolved_ones_do_not():
+    # depths LIMIT (1 + 4 h): every step far beyond a 0.02 % chaos; the finest triple is first order and monotone,
+    # so Richardson's value is the law's limit and the line agrees with it
+    r = study(slope=4.0, sd=0.0002)[2]
+    d = r[(r.quantity == "crh3") & (r.velocity_ms == 500.0)].iloc[0]
+    assert d.refinement == "asymptotic" and d.order == pytest.approx(1.0, abs=0.2)
+    assert d.richardson == pytest.approx(3.0, rel=2e-3) and d.uncertainty_order < 0.005
+    flat = study(sd=0.003)[2]
+    assert (flat.refinement == "steps within noise").mean() > 0.8 and flat.richardson.isna().mean() > 0.8
+
+
+def test_a_mesh_with_one_realisation_keeps_its_mean_and_the_pool_comes_from_the_others():
+    p = [q for q in pieces(sd=0.003) if not (q["piece"].startswith("m5/") and q["member"] > 0)]
+    r = _rows_of(p)
+    c = r[(r.quantity == "DO/CRH 4.5") & (r.velocity_ms == 1200.0)].iloc[0]
+    assert c.meshes == 5 and c.realisations_min == 1 and c.sd_pooled_dof == 8   # 4 meshes x (3 - 1)
+    assert np.isfinite(c.estimate) and c.element_size_finest_m == pytest.approx(0.07 / 20.0)
+
+
+def test_identical_realisations_and_too_few_meshes_say_so():
+    r = _rows_of(pieces(sd=0.0))
+    assert set(r.status) == {"no chaos measured (fewer than two realisations, or identical ones)"}
+    assert set(r[r.quantity == "DO/CRH 3"].kind) == {"contrast"}
+    few = _rows_of([q for q in pieces() if q["piece"].split("/")[0] in ("m1", "m2")])
+    assert set(few.status) == {"fewer than 3 meshes with a mean"}
+    with pytest.raises(ValueError, match="goals has no goal for 1200"):
+        _rows_of(pieces(), {"500": 0.02})

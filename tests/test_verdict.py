@@ -91,3 +91,30 @@ def test_a_numerical_control_joins_the_uncertainty_only_when_resolved():
     f = V.verdict_rows(table(), sensitivity(1.08), eroding(), chaos(), unstated(8.0, ejection=-1.5, resolved=True), {})
     loud = pick(f, V.FREE)
     assert math.isclose(loud.uncertainty, math.hypot(0.008, 0.015)) and "ejection scale 2" in loud.uncertainty_basis
+
+
+def test_nothing_reaches_what_is_already_inside_and_a_line_that_fails_is_undecided(tmp_path):
+    f = V.verdict_rows(table(paper=1.0), sensitivity(1.08), eroding(), chaos(0.995, 0.008), unstated(-5.0), {})
+    assert pick(f, V.FREE).paper_within_uncertainty and pick(f, V.FREE).reached_by == ""
+    # the table read back from its CSV (booleans as text) and a study whose line does not hold the means
+    bad = V.verdict_rows(table(), sensitivity(1.08), eroding(), chaos(1.07, 0.001, holds="False"), None, {})
+    path = tmp_path / "verdict.csv"
+    bad.to_csv(path, index=False)
+    back = pd.read_csv(path)
+    st = {r.quantity: r.status for r in V.verdict_diff_rows(back) if r.case.startswith("500")}
+    assert st[f"DO/CRH 4.5 ({V.FREE})"] == "undecided"          # 1.07 +- 0.001 would be reproduced, but no limit
+    assert st[f"DO/CRH 4.5 ({V.EQ9})"] == "deviates"
+
+
+def test_the_docs_blocks_read_a_partial_study(tmp_path):
+    from penetration.pipeline import docs
+    f = V.verdict_rows(table(), sensitivity(1.08), eroding(), None, None, {})
+    files = {"figures/verdict.csv": f.to_csv(index=False),
+             "workflow/config.yaml": "fe_realisations: {velocities: [500.0, 1200.0]}\n",
+             "figures/fe/erosion_free/chaos_v500.csv": "quantity,kind,velocity_ms,status,estimate\n"
+                                                      "DO/CRH 4.5,contrast,500,fewer than 3 meshes with a mean,\n"}
+    read = lambda p: files[p] if p in files else (_ for _ in ()).throw(FileNotFoundError(p))  # noqa: E731
+    text = docs.verdict(read)
+    assert "pending" in text and "Eq 9 (stated S)" in text
+    block = docs.erosion_free_chaos(read)
+    assert "fewer than 3 meshes with a mean" in block and "chaos_v1200.csv" in block

@@ -34,7 +34,7 @@ rule verdict:
             chaos=[study_input(f"figures/fe/erosion_free/chaos_v{v:g}.csv") for v in config["fe_realisations"]["velocities"]],
             unstated=[study_input(f"figures/fe/unstated_{t}_v{v:g}.csv") for t in config["fe_realisations"]["unstated"]
                       for v in config["fe_realisations"]["velocities"]],
-            provenance=config["verdict"]["provenance"],
+            provenance=config["verdict"]["provenance"], free_velocities=config["fe_realisations"]["velocities"],
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/verdict.tsv"

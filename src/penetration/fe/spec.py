@@ -99,8 +99,9 @@ class TargetSpec:
     formulation: str = "eroding"  # one of FORMULATIONS
     pilot_hole: float = 0.25     # erosion-free: the pilot hole's radius over the shank's (a study drives it to 0)
     pilot_guide: bool = False    # erosion-free: a rigid frictionless guide fills the hole (its wall cannot enter it)
-    ejection_scale: float = 1.0  # erosion-free: the lip ejects this many times as readily (its thinness threshold
-    #                              times it, its height threshold over it; a study halves and doubles it)
+    ejection_scale: float = 1.0  # erosion-free: ejection this many times as ready (the thinness threshold, which
+    #                              also rules the crater wall's debris, times it, the lip's height threshold over it;
+    #                              a study halves and doubles it)
 
     def __post_init__(self):
         if self.kind not in ("semi_infinite", "block"):

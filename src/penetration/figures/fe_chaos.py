@@ -10,10 +10,11 @@ MM = 1e-3
 CONTRAST_COLORS = {"DO/CRH 4.5": "tab:green", "DO/CRH 3": "tab:purple", "CRH 4.5/CRH 3": "tab:blue"}
 
 
-def chaos_figure(cells, rows, path, dpi):
+def chaos_figure(cells, rows, path, dpi, where=""):
     """One panel per velocity: each contrast's realisations' mean +- 2 s.e. on every mesh (ratio - 1 in points
-    against the element size), its weighted first-order line, the estimate at zero size +- U and the paper's
-    simulated value (a cross at zero size)."""
+    against the element size; the standard errors of the chaos pooled over the meshes, as the fit's), its weighted
+    first-order line, the estimate at zero size +- U and the paper's simulated value (a cross at zero size).
+    ``where``: the scene's words for the title."""
     plt.rcParams.update({"font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
     con = cells[cells.kind == "contrast"]
     vs = sorted(con.velocity_ms.unique())
@@ -25,9 +26,11 @@ def chaos_figure(cells, rows, path, dpi):
             if g.empty:
                 continue
             dx = (k - 1) * 0.06
-            ax.errorbar(g.element_size_m / MM + dx, 100 * (g["mean"] - 1), yerr=200 * g.se, fmt="o", ms=3.5,
-                        color=color, capsize=2, label=f"{name}: mean of {int(g.realisations.min())}+ realisations +- 2 s.e.")
             r = rows[(rows.quantity == name) & (rows.velocity_ms == v)]
+            pooled = float(r.iloc[0].get("sd_pooled", np.nan)) if len(r) else np.nan
+            se = pooled / np.sqrt(g.realisations) if np.isfinite(pooled) else g.se   # the fit's errors
+            ax.errorbar(g.element_size_m / MM + dx, 100 * (g["mean"] - 1), yerr=200 * se, fmt="o", ms=3.5,
+                        color=color, capsize=2, label=f"{name}: mean of {int(g.realisations.min())}+ realisations +- 2 s.e.")
             if r.empty or not np.isfinite(r.iloc[0].get("zero_size", np.nan)):
                 continue
             r = r.iloc[0]
@@ -41,7 +44,7 @@ def chaos_figure(cells, rows, path, dpi):
         ax.set_xlim(-1.0, None)
         ax.set_xlabel("element size (mm); squares at 0: zero-size estimate +- U, crosses: paper")
         ax.set_ylabel("depth ratio - 1 (points)")
-        ax.set_title(f"{v:g} m/s, erosion-free target, pilot hole 1/8")
+        ax.set_title(f"{v:g} m/s, erosion-free target{where}")
     axes[0, 0].legend(fontsize=6.5, loc="best")
     fig.tight_layout()
     save(fig, path, dpi)

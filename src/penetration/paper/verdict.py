@@ -41,22 +41,29 @@ SHORT = {EQ9: "Eq 9 (stated S)", TRAJECTORY: "trajectory", CAVITY: "cavity", ERO
 KEYS = {EQ9: "eq9", TRAJECTORY: "trajectory", CAVITY: "cavity", ERODING: "eroding", FREE: "erosion_free"}
 COLUMNS = ("contrast", "velocity_ms", "model", "value", "uncertainty", "uncertainty_basis", "calibrated", "provenance",
            "unstated_low", "unstated_high", "unstated_inputs", "paper_sim_ratio", "paper_minus_value_points",
-           "paper_within_uncertainty", "paper_within_unstated", "reached_by")
+           "paper_within_uncertainty", "paper_within_unstated", "reached_by", "limit")
 
 
 def _reached(value, u, paper, settings):
-    """The settings (label -> value) whose value and the model's bracket the paper's, widened by u."""
+    """The settings (label -> value) that move the model's value towards the paper's and whose value and the
+    model's bracket the paper's, widened by u; none where the paper's value already lies within value +- u."""
+    if abs(paper - value) <= u:
+        return []
     return [label for label, x in settings.items()
-            if min(value, x) - u <= paper <= max(value, x) + u and abs(x - value) > 0]
+            if (x - value) * (paper - value) > 0 and min(value, x) - u <= paper <= max(value, x) + u]
 
 
-def _row(contrast, v, model, value, u, basis, provenance, paper, settings):
-    """One row of the table; ``settings``: label -> the contrast the model gives at that unstated setting."""
+def _row(contrast, v, model, value, u, basis, provenance, paper, settings, limit=True):
+    """One row of the table; ``settings``: label -> the contrast the model gives at that unstated setting (a
+    non-finite one left out); ``limit``: whether the value is a limit (false: a study found none, the row is read as
+    undecided)."""
+    settings = {k: x for k, x in settings.items() if math.isfinite(x)}
     values = [value, *settings.values()]
     finite = value is not None and math.isfinite(value)
     low, high = (min(values), max(values)) if finite and settings else (math.nan, math.nan)
     within = bool(finite and abs(paper - value) <= u) if finite else None
     reached = _reached(value, u, paper, settings) if finite else []
+    inside = bool(finite and abs(paper - value) <= u)
     return {"contrast": contrast, "velocity_ms": float(v), "model": model, "value": value if finite else math.nan,
             "uncertainty": u, "uncertainty_basis": basis, "calibrated": CALIBRATED[model], "provenance": provenance,
             "unstated_low": low, "unstated_high": high,
@@ -64,7 +71,8 @@ def _row(contrast, v, model, value, u, basis, provenance, paper, settings):
             "paper_sim_ratio": paper, "paper_minus_value_points": 100 * (paper - value) if finite else math.nan,
             "paper_within_uncertainty": within,
             "paper_within_unstated": bool(finite and settings and low - u <= paper <= high + u) if finite else None,
-            "reached_by": "; ".join(reached) if reached else ("none" if finite and settings else "")}
+            "reached_by": "; ".join(reached) if reached else ("none" if finite and settings and not inside else ""),
+            "limit": limit}
 
 
 def _cavity_variants(sensitivity: pd.DataFrame, contrast, v):
@@ -103,11 +111,13 @@ def _control_changes(unstated: pd.DataFrame | None, target, contrast, v):
 
 
 def verdict_rows(table: pd.DataFrame, sensitivity: pd.DataFrame, eroding: pd.DataFrame | None,
-                 chaos: pd.DataFrame | None, unstated: pd.DataFrame | None, provenance: dict) -> pd.DataFrame:
+                 chaos: pd.DataFrame | None, unstated: pd.DataFrame | None, provenance: dict,
+                 free_velocities=(500.0, 1200.0)) -> pd.DataFrame:
     """The verdict table (module doc). ``table``: figures/nose_contrasts_table.csv; ``sensitivity``:
     figures/cavity_table3_sensitivity.csv; ``eroding``: figures/fe/contrast_extrapolation.csv; ``chaos``:
     figures/fe/erosion_free/chaos.csv; ``unstated``: figures/fe/unstated_inputs.csv (None where a study's output is
-    missing: its rows say pending); ``provenance``: model key (KEYS) -> a note on its source (which build, which solver)."""
+    missing: its rows say pending); ``provenance``: model key (KEYS) -> a note on its source (which build, which solver);
+    ``free_velocities``: the velocities the erosion-free study runs (config fe_realisations.velocities)."""
     rows = []
     for _, t in table.iterrows():
         name, v, paper = t.contrast, float(t.velocity), float(t.paper_sim_ratio)
@@ -130,23 +140,28 @@ def verdict_rows(table: pd.DataFrame, sensitivity: pd.DataFrame, eroding: pd.Dat
             rows.append(_row(name, v, ERODING, value, u, f"{100 * float(e.confidence):.0f} % interval of the line through "
                              f"{int(e.meshes)} meshes", provenance.get(KEYS[ERODING], ""), paper,
                              _unstated_changes(unstated, "eroding", name, v, value)))
-        if v not in (500.0, 1200.0):
+        if v not in free_velocities:
             continue
         c = None if chaos is None else chaos[(chaos.quantity == name) & (chaos.velocity_ms == v)]
-        if c is None or c.empty or not math.isfinite(float(c.iloc[0].get("estimate", math.nan))):
+        if c is None or c.empty:
             rows.append(_row(name, v, FREE, math.nan, math.nan, "pending: study fe_erosion_free_chaos",
                              provenance.get(KEYS[FREE], ""), paper, {}))
             continue
         c = c.iloc[0]
+        if not math.isfinite(float(c.get("estimate", math.nan))):
+            rows.append(_row(name, v, FREE, math.nan, math.nan, f"study fe_erosion_free_chaos: {c.status}",
+                             provenance.get(KEYS[FREE], ""), paper, {}))
+            continue
         value, u = float(c.estimate), float(c.uncertainty)
+        holds = str(c.fit_holds) == "True"
         basis = (f"t x s.e. of the line through {int(c.meshes)} meshes ({int(c.realisations_min)}+ realisations each)"
-                 + ("" if c.fit_holds in (True, "True") else "; the line does not hold the means: no limit"))
+                 + ("" if holds else "; the line does not hold the means: no limit"))
         controls = _control_changes(unstated, "erosion_free", name, v)
         if controls:   # a resolved change a numerical control makes joins the numerics' uncertainty
             u = math.hypot(u, max(abs(x) for _, x in controls) / 100)
             basis += "; with the largest resolved change of " + ", ".join(f"{k} ({x:+.1f} points)" for k, x in controls)
         rows.append(_row(name, v, FREE, value, u, basis, provenance.get(KEYS[FREE], ""), paper,
-                         _unstated_changes(unstated, "erosion_free", name, v, value)))
+                         _unstated_changes(unstated, "erosion_free", name, v, value), holds))
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
@@ -159,12 +174,15 @@ def verdict_diff_rows(verdict: pd.DataFrame) -> list:
         model = r.model.replace(",", ";")
         case = f"{int(r.velocity_ms)} m/s; the verdict table (figures/verdict.csv)"
         if not math.isfinite(r.value):
-            out.append(Row("verdict", f"{r.contrast} ({model})", f"{case}; {r.uncertainty_basis}", r.paper_sim_ratio,
-                           math.nan, math.nan, TOLERANCE, "undecided"))
+            out.append(Row("verdict", f"{r.contrast} ({model})", f"{case}; {r.uncertainty_basis.replace(',', ';')}",
+                           r.paper_sim_ratio, math.nan, math.nan, TOLERANCE / r.paper_sim_ratio, "undecided"))
             continue
         lo, hi = r.value - r.uncertainty, r.value + r.uncertainty
-        status = interval_status(r.paper_sim_ratio, lo, hi, TOLERANCE, bool(r.calibrated))
-        out.append(Row("verdict", f"{r.contrast} ({model})", f"{case}; +-{r.uncertainty:.3f}",
-                       r.paper_sim_ratio, r.value, abs(r.value - r.paper_sim_ratio) / r.paper_sim_ratio, TOLERANCE,
-                       status))
+        tol = TOLERANCE / r.paper_sim_ratio   # relative, as every row's tol
+        if not (math.isfinite(lo) and math.isfinite(hi)) or str(r.limit) != "True":
+            status, note = "undecided", "; no limit"
+        else:
+            status, note = interval_status(r.paper_sim_ratio, lo, hi, TOLERANCE, str(r.calibrated) == "True"), ""
+        out.append(Row("verdict", f"{r.contrast} ({model})", f"{case}; +-{r.uncertainty:.3f}{note}",
+                       r.paper_sim_ratio, r.value, abs(r.value - r.paper_sim_ratio) / r.paper_sim_ratio, tol, status))
     return out

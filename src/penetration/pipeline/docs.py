@@ -717,7 +717,7 @@ def verdict(read) -> str:
             continue
         inside = sum(r["paper_within_uncertainty"] == "True" for r in mine)
         reach = sorted({x for r in mine for x in r["reached_by"].split("; ") if x and x != "none"})
-        counts.append(f"{m}: the paper's value within ± in {inside} of {len(mine)} cells"
+        counts.append(f"{SHORT.get(m, m)}: the paper's value within ± in {inside} of {len(mine)} cells"
                       + (f", reached by an unstated input ({', '.join(reach)}) in "
                          f"{sum(bool(r['reached_by']) and r['reached_by'] != 'none' for r in mine)}" if reach else ""))
     return ("\n".join(lines) + "\n\nBrackets: the range over the unstated inputs (friction, failure strain, the cavity "
@@ -743,18 +743,23 @@ def erosion_free_chaos(read) -> str:
             missing.append(f"{v:g} m/s")
             continue
         shots = _rows_if_any(read, f"figures/fe/erosion_free/chaos_v{v:g}_shots.csv")
-        cost.append(f"{len(shots)} shots at {v:g} m/s, {sum(float(r['wall_time_s']) for r in shots) / 3600:.1f} h")
+        wall = sum(x for x in (_num(r["wall_time_s"]) for r in shots) if x == x)
+        cost.append(f"{len(shots)} shots at {v:g} m/s, {wall / 3600:.1f} h")
         for r in rows:
-            nxt = (f"{float(r['next_elements_across']):g} across, {float(r['next_cell_hours']):.1f} h a cell"
+            if _num(r.get("estimate", "")) != _num(r.get("estimate", "")):
+                lines.append(f"| {float(r['velocity_ms']):g} | {r['quantity']} | — | — | — | — | — | {r['status']} | — |")
+                continue
+            nxt = (f"{_num(r['next_elements_across']):g} across, {_num(r['next_cell_hours']):.1f} h a cell"
                    if r.get("next_elements_across") not in (None, "") else "—")
-            lines.append(f"| {float(r['velocity_ms']):g} | {r['quantity']} | {float(r['finest_mean']):.3f} ± "
-                         f"{float(r['finest_se']):.3f} | {float(r['sd_pooled']):.4f} | "
-                         f"{'yes' if r['fit_holds'] == 'True' else 'no'} ({float(r['fit_p']):.2f}) | "
-                         f"{float(r['estimate']):.3f} ± {float(r['uncertainty']):.3f} | {float(r['paper']):.3f} | "
+            lines.append(f"| {float(r['velocity_ms']):g} | {r['quantity']} | {_num(r['finest_mean']):.3f} ± "
+                         f"{_num(r['finest_se']):.3f} | {_num(r['sd_pooled']):.4f} | "
+                         f"{'yes' if r['fit_holds'] == 'True' else 'no'} ({_num(r['fit_p']):.2f}) | "
+                         f"{_num(r['estimate']):.3f} ± {_num(r['uncertainty']):.3f} | {_num(r['paper']):.3f} | "
                          f"{r['status']} | {nxt} |")
     tail = ("\nJob time (2 cores, wall): " + "; ".join(cost) + "." if cost else "")
-    tail += (f"\nNot yet run: {', '.join(missing)} (pieces under `figures/fe/realisations/`; "
-             "`snakemake -c2 figures/fe/erosion_free/chaos_v1200.csv` resumes them).\n" if missing else "\n")
+    tail += ("\nNot yet run: " + ", ".join(f"{v} (`snakemake -c2 figures/fe/erosion_free/chaos_v{v.split()[0]}.csv` "
+                                           "resumes its pieces under `figures/fe/realisations/`)" for v in missing)
+             + ".\n" if missing else "\n")
     return "\n".join(lines) + "\n" + tail
 
 

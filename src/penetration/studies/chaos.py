@@ -10,12 +10,15 @@ Over the meshes (``chaos_rows``), per depth and contrast:
 
 1. the weighted least-squares line of the means against the element size h (first order, the weights the inverse
    squared standard errors of the means, from the chaos pooled over the meshes): its value at h = 0 and standard error, inflated by sqrt(chi2/dof) where the means
-   scatter about the line beyond their chaos (the line then does not hold the data: ``fit_holds`` false where the
-   chi-square's upper tail probability is below FIT_P_MIN);
+   scatter about the line beyond their chaos (the line then does not hold the data: ``fit_holds`` false where
+   chi2/dof's upper tail probability under F(dof, the pooled chaos's dof) is below FIT_P_MIN: the weights' s.d. is
+   itself estimated); the coverage factor stays Student's t on the pooled dof, conservative where the inflation
+   applies;
 2. each step between successive meshes against its noise (the standard error of the difference of the two means):
    a step is a mesh effect only beyond ``noise_sigmas`` of it. Only where the two steps of the finest triple are both
-   mesh effects are the observed order, Richardson's value and Roache's GCI taken, with the safety factor 1.25 where
-   the triple is monotone and its order in the asymptotic range, else 3 with the order set to 1;
+   mesh effects (and its meshes refined by one ratio) are the observed order, Richardson's value and Roache's GCI of
+   that triple taken, with the safety factor 1.25 where it is monotone and its order in the asymptotic range, else 3
+   with the order set to 1 (``gci_order``);
 3. the estimate: the line's value at zero size, with U = t x its standard error (95 %, Student's t on the degrees of
    freedom of the chaos pooled over the meshes: each cell's standard error is the pooled s.d. over its root number of
    realisations, a few realisations giving a poor s.d. each), combined in quadrature
@@ -37,7 +40,7 @@ from .fe_results import CONTRASTS
 from .mesh_convergence import MONOTONE, grid_refinement
 from .stats import t_quantile
 
-FIT_P_MIN = 0.01        # the line holds the means unless chi-square's upper tail probability falls below this
+FIT_P_MIN = 0.01        # the line holds the means unless the F test's upper tail probability falls below this
 COVERAGE = 2.0          # a change beyond COVERAGE standard errors is resolved
 CONFIDENCE = 0.95       # U: the Student-t interval of the line's value at zero size on the pooled chaos's dof
 REFINE = 1.25           # the next mesh: this many times finer than the finest
@@ -91,17 +94,17 @@ def cell_rows(shots: pd.DataFrame, keys=("scene", "profile", "element_size_m", "
         depth = {}
         for nose, d in g.groupby("nose", sort=False):
             n, runs, mean, sd, se = _depth_cell(d)
-            depth[nose] = (mean, sd, se, n)
+            depth[nose] = (mean, sd, se, n, runs)
             rows.append({**base, "quantity": nose, "kind": "depth", "realisations": n, "runs": runs, "mean": mean,
                          "sd": sd, "se": se, "sd_pct": 100 * sd / mean, "ejected_mass_kg": d.ejected_mass_kg.mean(),
                          "crater_debris_mass_kg": d.crater_debris_mass_kg.mean(),
                          "wall_debris_mass_kg": d.wall_debris_mass_kg.mean(), "wall_time_s": d.wall_time_s.mean()})
         for name, (num, den) in CONTRASTS.items():
             if num in depth and den in depth:
-                (ma, sa, ea, na), (mb, sb, eb, nb) = depth[num], depth[den]
+                (ma, sa, ea, na, ra), (mb, sb, eb, nb, rb) = depth[num], depth[den]
                 c = ma / mb
                 rows.append({**base, "quantity": name, "kind": "contrast", "realisations": min(na, nb),
-                             "runs": min(na, nb), "mean": c, "sd": c * math.hypot(sa / ma, sb / mb),
+                             "runs": min(ra, rb), "mean": c, "sd": c * math.hypot(sa / ma, sb / mb),
                              "se": c * math.hypot(ea / ma, eb / mb), "sd_pct": math.nan})
     return pd.DataFrame(rows)
 
@@ -122,20 +125,24 @@ def weighted_line(h, f, se):
 
 def _refinement(h, f, se, sigmas):
     """The steps of the sequence (coarse first) against their noise, and the finest triple's grid refinement where
-    both its steps are mesh effects: (steps text, steps resolved, order, Richardson, GCI, safety, status)."""
+    both its steps are mesh effects: (steps text, steps resolved, observed order, order of the GCI, Richardson, GCI,
+    safety, status). The triple's grid refinement only (its three meshes refined by one ratio; the steps before it
+    are not checked against their noise); not monotone or not asymptotic: the GCI with Fs 3 and order 1."""
     steps = np.diff(f)
     noise = np.hypot(se[1:], se[:-1])
     resolved = np.abs(steps) > sigmas * noise
     text = " ".join(f"{s:+.4f}{'*' if r else ''}" for s, r in zip(steps, resolved))
     nan = math.nan
     if f.size < 3 or not (resolved[-1] and resolved[-2]):
-        return text, int(resolved.sum()), nan, nan, nan, nan, "steps within noise"
-    ratio = h[-2] / h[-1]
-    g = grid_refinement(f, ratio)
+        return text, int(resolved.sum()), nan, nan, nan, nan, nan, "steps within noise"
+    r1, r2 = h[-3] / h[-2], h[-2] / h[-1]
+    if abs(r1 / r2 - 1.0) > 1e-6:
+        return text, int(resolved.sum()), nan, nan, nan, nan, nan, "finest triple not refined by one ratio"
+    g = grid_refinement(f[-3:], r2)
     if g.status == MONOTONE:
-        return text, int(resolved.sum()), g.order, g.extrapolated, g.gci_fine, SAFETY_MONOTONE, "asymptotic"
-    gci = SAFETY_OTHER * abs(f[-1] - f[-2]) / (ratio - 1.0)
-    return text, int(resolved.sum()), g.order, nan, gci, SAFETY_OTHER, g.status
+        return text, int(resolved.sum()), g.order, g.order, g.extrapolated, g.gci_fine, SAFETY_MONOTONE, "asymptotic"
+    gci = SAFETY_OTHER * abs(f[-1] - f[-2]) / (r2 - 1.0)
+    return text, int(resolved.sum()), g.order, 1.0, nan, gci, SAFETY_OTHER, g.status
 
 
 def chaos_rows(cells: pd.DataFrame, paper: dict, goals: dict, sigmas: float, cost: pd.DataFrame | None = None,
@@ -146,25 +153,35 @@ def chaos_rows(cells: pd.DataFrame, paper: dict, goals: dict, sigmas: float, cos
     elements across (columns elements_across, wall_time_s, velocity_ms), for the next mesh's cost."""
     rows = []
     for (v, q), g in cells.groupby(["velocity_ms", "quantity"], sort=False):
+        kind = g.kind.iloc[0]
         g = g.sort_values("element_size_m", ascending=False)
-        g = g[np.isfinite(g["mean"]) & np.isfinite(g["se"]) & (g["se"] > 0)]
-        kind = g.kind.iloc[0] if len(g) else "depth"
-        goal = float(goals[f"{v:g}"])
-        base = {"quantity": q, "kind": kind, "velocity_ms": v, "meshes": len(g),
+        dropped = int((~(np.isfinite(g["mean"]) & (g.realisations >= 1))).sum())
+        g = g[np.isfinite(g["mean"]) & (g.realisations >= 1)]   # a cell with no realisation at rest has no mean
+        key = f"{v:g}"
+        if key not in goals:
+            raise ValueError(f"fe_realisations.chaos.goals has no goal for {key} m/s; it has {sorted(goals)}")
+        goal = float(goals[key])
+        base = {"quantity": q, "kind": kind, "velocity_ms": v, "meshes": len(g), "meshes_without_mean": dropped,
                 "realisations_min": int(g.realisations.min()) if len(g) else 0}
         if len(g) < 3:
-            rows.append({**base, "status": "fewer than 3 meshes"})
+            rows.append({**base, "status": "fewer than 3 meshes with a mean"})
             continue
         h, f, sd, n = (g[c].to_numpy(float) for c in ("element_size_m", "mean", "sd", "realisations"))
-        # the chaos pooled over the meshes (a few realisations per cell give a poor s.d. each): its dof sets the
-        # coverage factor
-        dof_pool = float(np.sum(n - 1))
-        sd_pool = math.sqrt(float(np.sum((n - 1) * sd ** 2)) / dof_pool)
+        # the chaos pooled over the cells with two or more realisations (a few realisations per cell give a poor s.d.
+        # each): its dof sets the coverage factor and the fit's test
+        many = n >= 2
+        dof_pool = float(np.sum(n[many] - 1))
+        sd_pool = math.sqrt(float(np.sum((n[many] - 1) * sd[many] ** 2)) / dof_pool) if dof_pool > 0 else math.nan
+        if not (np.isfinite(sd_pool) and sd_pool > 1e-12 * float(np.max(np.abs(f)))):
+            rows.append({**base, "sd_pooled": sd_pool, "sd_pooled_dof": dof_pool,
+                         "status": "no chaos measured (fewer than two realisations, or identical ones)"})
+            continue
         se = sd_pool / np.sqrt(n)
         k = t_quantile(CONFIDENCE, dof_pool)
         f0, se0, a, sea, chi2, dof = weighted_line(h, f, se)
-        p_fit = float(stats.chi2.sf(chi2, dof)) if dof > 0 else math.nan
-        steps, n_resolved, order, rich, gci, safety, status = _refinement(h, f, se, sigmas)
+        # chi2/dof against F(dof, dof_pool): the weights' s.d. is itself estimated from the realisations
+        p_fit = float(stats.f.sf(chi2 / dof, dof, dof_pool)) if dof > 0 else math.nan
+        steps, n_resolved, order, gci_order, rich, gci, safety, status = _refinement(h, f, se, sigmas)
         u_fit = k * se0
         # where the finest triple is asymptotic, the line's first order against Richardson's observed one
         u_order = abs(f0 - rich) if np.isfinite(rich) else 0.0
@@ -176,7 +193,7 @@ def chaos_rows(cells: pd.DataFrame, paper: dict, goals: dict, sigmas: float, cos
                "element_size_finest_m": h[-1], "zero_size": f0, "zero_size_se": se0, "slope_per_m": a, "slope_se_per_m": sea,
                "slope_resolved": bool(abs(a) > sigmas * sea), "sd_pooled": sd_pool, "sd_pooled_dof": dof_pool,
                "coverage_factor": k, "chi2": chi2, "dof": dof, "fit_p": p_fit,
-               "fit_holds": fit_holds, "steps": steps, "steps_resolved": n_resolved, "order": order,
+               "fit_holds": fit_holds, "steps": steps, "steps_resolved": n_resolved, "order": order, "gci_order": gci_order,
                "richardson": rich, "gci": gci, "gci_safety": safety, "refinement": status,
                "estimate": f0, "uncertainty": u, "uncertainty_order": u_order,
                "goal": goal * scale, "within_goal": within, "paper": paper.get((v, q), math.nan)}
@@ -214,7 +231,8 @@ def next_mesh(cost: pd.DataFrame, velocity, members=None) -> dict:
 
 def unstated_rows(cells: pd.DataFrame, baselines: dict, settings: dict, paper: dict) -> pd.DataFrame:
     """Per target, contrast and velocity: each scene's contrast (realisations' mean +- 2 s.e.) and its change from the
-    target's baseline scene, the setting it changes and whether the paper's value lies within 2 s.e. of it.
+    target's baseline scene (resolved beyond Student's t at 95 % on the two cells' realisations less two, times the
+    change's standard error), the setting it changes and whether the paper's value lies within 2 s.e. of it.
     ``baselines``: target -> its baseline scene; ``settings``: scene -> (target, input, setting)."""
     rows = []
     con = cells[cells.kind == "contrast"]
@@ -226,13 +244,16 @@ def unstated_rows(cells: pd.DataFrame, baselines: dict, settings: dict, paper: d
             b0 = b.iloc[0] if len(b) else None
             change = r["mean"] - b0["mean"] if b0 is not None else math.nan
             change_se = math.hypot(r.se, b0.se) if b0 is not None and scene != baselines[target] else 0.0
+            dof = r.realisations + b0.realisations - 2 if b0 is not None else 0
+            k = t_quantile(CONFIDENCE, dof) if dof > 0 else math.inf
             p = paper.get((r.velocity_ms, r.quantity), math.nan)
             rows.append({"target": target, "scene": scene, "baseline": scene == baselines[target], "input": name,
                          "setting": setting,
                          "profile": r.profile, "element_size_m": r.element_size_m, "contrast": r.quantity,
                          "velocity_ms": r.velocity_ms, "realisations": r.realisations, "ratio": r["mean"],
                          "ratio_se": r.se, "sd": r.sd, "change_points": 100 * change, "change_se_points": 100 * change_se,
-                         "change_resolved": bool(abs(change) > COVERAGE * change_se) if change_se > 0 else False,
+                         "change_resolved": bool(abs(change) > k * change_se) if change_se > 0 else False,
+                         "change_t_factor": k if change_se > 0 else math.nan,
                          "paper_sim_ratio": p, "paper_within_2se": bool(abs(p - r["mean"]) <= COVERAGE * r.se)
-                         if np.isfinite(p) else None})
+                         if np.isfinite(p) and np.isfinite(r.se) else None})
     return pd.DataFrame(rows)

@@ -92,5 +92,5 @@ def verdict(inputs, outputs, params):
     if sensitivity is None:
         raise FileNotFoundError(f"{params.sensitivity['path']} is missing: build it with `snakemake -c2 studies`")
     table = verdict_rows(pd.read_csv(inputs.table), sensitivity, study(params.eroding), studies(params.chaos),
-                         studies(params.unstated), params.provenance)
+                         studies(params.unstated), params.provenance, tuple(float(v) for v in params.free_velocities))
     write_csv(table, outputs.csv)

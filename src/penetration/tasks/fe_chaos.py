@@ -53,7 +53,9 @@ def fe_erosion_free_chaos(inputs, outputs, params):
     write_csv(shots, outputs.shots)
     write_csv(cells, outputs.cells)
     write_csv(rows, outputs.csv)
-    chaos_figure(cells, rows, outputs.png, params.dpi)
+    holes = sorted({float(s["target"]["pilot_hole"]) for p in _pieces(params.pieces[:1]) for s in p["shots"]})
+    chaos_figure(cells, rows, outputs.png, params.dpi, ", pilot hole " + ", ".join(f"{h:g}" for h in holes)
+                 + " of the shank radius")
 
 
 def scene_setting(path):
