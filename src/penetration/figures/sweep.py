@@ -1,7 +1,6 @@
 """The sweep target: depth against velocity for nose families at every level, and how the cost grows with shots."""
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 
 from ..levels import LEVELS
