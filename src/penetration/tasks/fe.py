@@ -197,18 +197,23 @@ def fe_shot(inputs, outputs, params):
     write_json(summary, outputs.json)
 
 
-def _stopped_shot(outputs, params, sc, stop, wall):
-    """The record of an erosion-free shot that stopped: what it was, where and when it stopped, no depth."""
+def stopped_summary(params, sc, stop, wall):
+    """The summary of an erosion-free shot that stopped: what it was, where and when it stopped, no depth."""
     cfg = params.cfg
     settings = scene_settings(sc, cfg, params.profile)
     nan = float("nan")
-    summary = {"scene": sc.name, "nose": params.nose, "velocity": float(params.velocity), "mass": sc.mass,
-               "profile": params.profile, "element_size": settings.element_size,
-               "target": dataclasses.asdict(TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])),
-               "domain": domain_of(settings),
-               "status": "stopped", "diagnostic": str(stop), "depth_m": nan, "wall_time_s": wall, "steps": nan,
-               "elements": nan, "energy_error_max": nan, "eroded_mass_kg": 0.0, "ejected_mass_kg": nan,
-               "crater_debris_mass_kg": nan, "wall_debris_mass_kg": nan, "remap_energy_j": nan}
+    return {"scene": sc.name, "nose": params.nose, "velocity": float(params.velocity), "mass": sc.mass,
+            "profile": params.profile, "element_size": settings.element_size,
+            "target": dataclasses.asdict(TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])),
+            "domain": domain_of(settings), "friction": sc.friction,
+            "status": "stopped", "diagnostic": str(stop), "depth_m": nan, "wall_time_s": wall, "steps": nan,
+            "elements": nan, "energy_error_max": nan, "eroded_mass_kg": 0.0, "ejected_mass_kg": nan,
+            "crater_debris_mass_kg": nan, "wall_debris_mass_kg": nan, "remap_energy_j": nan}
+
+
+def _stopped_shot(outputs, params, sc, stop, wall):
+    """The record of an erosion-free shot that stopped: its summary (stopped_summary) and empty tables."""
+    summary = stopped_summary(params, sc, stop, wall)
     write_csv(pd.DataFrame(columns=["t", "depth", "velocity", "deceleration_raw", "deceleration"]), outputs.histories)
     write_csv(pd.DataFrame(columns=["r0", "z0", "r", "z", "damage", "eps_p", "state"]), outputs.fields)
     write_csv(pd.DataFrame(columns=["t"]), outputs.audit)
@@ -248,7 +253,19 @@ def fe_realisation(inputs, outputs, params):
         raise ValueError(f"fe_realisations.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation "
                          "of the chaos, not a change of the shot)")
     factor = 1.0 + member * step
-    summary, r, spec, sc = scene_shot(inputs, params, factor)
+    t0 = time.perf_counter()
+    try:
+        summary, r, spec, sc = scene_shot(inputs, params, factor)
+    except Unstable as stop:
+        # as fe_shot: an erosion-free realisation that stops is a result of its study (a realisation without a depth)
+        sc = scene_from_inputs(inputs, FE)
+        if sc.fe.get("formulation") != "erosion_free":
+            raise
+        print(f"stopped: {stop}", flush=True)
+        summary = stopped_summary(params, sc, stop, time.perf_counter() - t0)
+        write_json({**summary, "member": member, "velocity_factor": factor,
+                    "striking_velocity": summary["velocity"] * factor, "final_velocity_m_s": float("nan")}, outputs.json)
+        return
     write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
                 "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
 
