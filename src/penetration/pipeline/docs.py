@@ -717,12 +717,20 @@ def verdict(read) -> str:
             continue
         inside = sum(r["paper_within_uncertainty"] == "True" for r in mine)
         reach = sorted({x for r in mine for x in r["reached_by"].split("; ") if x and x != "none"})
+        widest = max(_num(r["uncertainty"]) for r in mine)
+        nolimit = sum(r.get("limit", "True") != "True" for r in mine)
         counts.append(f"{SHORT.get(m, m)}: the paper's value within ± in {inside} of {len(mine)} cells"
+                      + (f" (± up to {100 * widest:.1f} points" + (f"; {nolimit} without a limit" if nolimit else "")
+                         + ")" if widest > 0 else "")
                       + (f", reached by an unstated input ({', '.join(reach)}) in "
                          f"{sum(bool(r['reached_by']) and r['reached_by'] != 'none' for r in mine)}" if reach else ""))
     return ("\n".join(lines) + "\n\nBrackets: the range over the unstated inputs (friction, failure strain, the cavity "
             "level's conventions), shown apart from the ± of the model's numerics (chaos and mesh). " + "; ".join(counts)
-            + " (`figures/verdict.csv`, each model's source in its `provenance` column).\n")
+            + ". A ± wider than the paper's distance from the value holds it without confirming it: the diff counts a "
+            "cell as reproduced only when the whole interval lies within 2 points of the paper's value, as undecided "
+            "when it holds the paper's value and more, and a cell without a limit as undecided "
+            "(`figures/verdict.csv`, each model's source in its `provenance` column; `figures/diff.csv`, item "
+            "`verdict`).\n")
 
 
 def erosion_free_chaos(read) -> str:
