@@ -249,7 +249,9 @@ def test_fe_scenes_of_the_pipeline_are_valid():
     shots = fe_scene_shots(ROOT / "workflow/scenes/fe", SCENE_SCHEMA)
     assert set(shots) == {"do1", "do1_block", "table3", "fig15", "do1_depth54", "do1_depth54_free_bottom",
                           "do1_block_absorbing_sides", "table3_erosion_free", "table3_erosion_free_hole50",
-                          "table3_erosion_free_hole125", "table3_erosion_free_calibrated"}
+                          "table3_erosion_free_hole125", "table3_erosion_free_calibrated", "table3_mu005", "table3_mu010",
+                          "table3_mu020", "table3_fs038", "table3_erosion_free_mu005", "table3_erosion_free_mu010",
+                          "table3_erosion_free_mu020", "table3_erosion_free_eject050", "table3_erosion_free_eject200"}
     assert ("double_ogive", "835") in shots["do1"] and len(shots["table3"]) == 12 and len(shots["fig15"]) == 24
     assert all(len(shots[s]) == 6 for s in shots if s.startswith("table3_erosion_free"))
 

@@ -72,17 +72,17 @@ def test_missing_studies_give_pending_rows_and_undecided_statuses():
     assert pick(f, V.FREE).uncertainty_basis.startswith("pending") and math.isnan(pick(f, V.FREE).value)
     assert V.FREE not in set(f[f.velocity_ms == 800.0].model)     # the erosion-free scene has 500 and 1200 only
     st = {(r.quantity, r.case.split(" m/s")[0]): r.status for r in V.verdict_diff_rows(f)}
-    assert st[(f"DO/CRH 4.5 ({V.FREE})", "500")] == "undecided"
-    assert st[(f"DO/CRH 4.5 ({V.EQ9})", "500")] == "deviates"     # 4 points off, closed form
+    assert st[(f"verdict: DO/CRH 4.5 ({V.FREE})", "500")] == "undecided"
+    assert st[(f"verdict: DO/CRH 4.5 ({V.EQ9})", "500")] == "deviates"     # 4 points off, closed form
 
 
 def test_diff_statuses_follow_the_interval_and_the_calibration():
     f = V.verdict_rows(table(eq9=1.065, cav=1.075), sensitivity(1.08), eroding(1.07, 0.005), chaos(1.07, 0.05), None, {})
     st = {r.quantity: r.status for r in V.verdict_diff_rows(f) if r.case.startswith("500")}
-    assert st[f"DO/CRH 4.5 ({V.EQ9})"] == "reproduced"                      # within 2 points, nothing fitted
-    assert st[f"DO/CRH 4.5 ({V.CAVITY})"] == "agrees-after-calibration"     # within 2 points, calibrated on DO1
-    assert st[f"DO/CRH 4.5 ({V.ERODING})"] == "agrees-after-calibration"
-    assert st[f"DO/CRH 4.5 ({V.FREE})"] == "undecided"                      # +-5 points holds values beyond 2
+    assert st[f"verdict: DO/CRH 4.5 ({V.EQ9})"] == "reproduced"                      # within 2 points, nothing fitted
+    assert st[f"verdict: DO/CRH 4.5 ({V.CAVITY})"] == "agrees-after-calibration"     # within 2 points, calibrated on DO1
+    assert st[f"verdict: DO/CRH 4.5 ({V.ERODING})"] == "agrees-after-calibration"
+    assert st[f"verdict: DO/CRH 4.5 ({V.FREE})"] == "undecided"                      # +-5 points holds values beyond 2
 
 
 def test_a_numerical_control_joins_the_uncertainty_only_when_resolved():
@@ -102,8 +102,8 @@ def test_nothing_reaches_what_is_already_inside_and_a_line_that_fails_is_undecid
     bad.to_csv(path, index=False)
     back = pd.read_csv(path)
     st = {r.quantity: r.status for r in V.verdict_diff_rows(back) if r.case.startswith("500")}
-    assert st[f"DO/CRH 4.5 ({V.FREE})"] == "undecided"          # 1.07 +- 0.001 would be reproduced, but no limit
-    assert st[f"DO/CRH 4.5 ({V.EQ9})"] == "deviates"
+    assert st[f"verdict: DO/CRH 4.5 ({V.FREE})"] == "undecided"          # 1.07 +- 0.001 would be reproduced, but no limit
+    assert st[f"verdict: DO/CRH 4.5 ({V.EQ9})"] == "deviates"
 
 
 def test_the_docs_blocks_read_a_partial_study(tmp_path):

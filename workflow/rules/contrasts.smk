@@ -28,7 +28,7 @@ use rule cavity_variant_contrasts as nose_contrasts_data with:
 # unstated inputs' spread apart, the paper's value (reads the studies' committed outputs; config verdict).
 rule verdict:
     input: **task("tasks.contrasts"), table="figures/nose_contrasts_table.csv",
-    output: csv="figures/verdict.csv",
+    output: csv="figures/verdict.csv", md="figures/verdict.md",
     params: sensitivity=study_input("figures/cavity_table3_sensitivity.csv"),
             eroding=study_input("figures/fe/contrast_extrapolation.csv"),
             chaos=[study_input(f"figures/fe/erosion_free/chaos_v{v:g}.csv") for v in config["fe_realisations"]["velocities"]],

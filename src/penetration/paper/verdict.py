@@ -166,7 +166,8 @@ def verdict_rows(table: pd.DataFrame, sensitivity: pd.DataFrame, eroding: pd.Dat
 
 
 def verdict_diff_rows(verdict: pd.DataFrame) -> list:
-    """The verdict in the diff: per contrast, velocity and model, the ratio against the paper's simulated one,
+    """The verdict in the diff (item table3, quantity "verdict: contrast (model)"): per contrast, velocity and model,
+    the ratio against the paper's simulated one,
     judged on value +- uncertainty to within TOLERANCE (interval_status: an agreement of a calibrated model is
     agrees-after-calibration; a pending study's row undecided)."""
     out = []
@@ -174,7 +175,7 @@ def verdict_diff_rows(verdict: pd.DataFrame) -> list:
         model = r.model.replace(",", ";")
         case = f"{int(r.velocity_ms)} m/s; the verdict table (figures/verdict.csv)"
         if not math.isfinite(r.value):
-            out.append(Row("verdict", f"{r.contrast} ({model})", f"{case}; {r.uncertainty_basis.replace(',', ';')}",
+            out.append(Row("table3", f"verdict: {r.contrast} ({model})", f"{case}; {r.uncertainty_basis.replace(',', ';')}",
                            r.paper_sim_ratio, math.nan, math.nan, TOLERANCE / r.paper_sim_ratio, "undecided"))
             continue
         lo, hi = r.value - r.uncertainty, r.value + r.uncertainty
@@ -183,6 +184,6 @@ def verdict_diff_rows(verdict: pd.DataFrame) -> list:
             status, note = "undecided", "; no limit"
         else:
             status, note = interval_status(r.paper_sim_ratio, lo, hi, TOLERANCE, str(r.calibrated) == "True"), ""
-        out.append(Row("verdict", f"{r.contrast} ({model})", f"{case}; +-{r.uncertainty:.3f}{note}",
+        out.append(Row("table3", f"verdict: {r.contrast} ({model})", f"{case}; +-{r.uncertainty:.3f}{note}",
                        r.paper_sim_ratio, r.value, abs(r.value - r.paper_sim_ratio) / r.paper_sim_ratio, tol, status))
     return out

@@ -729,8 +729,8 @@ def verdict(read) -> str:
             + ". A ± wider than the paper's distance from the value holds it without confirming it: the diff counts a "
             "cell as reproduced only when the whole interval lies within 2 points of the paper's value, as undecided "
             "when it holds the paper's value and more, and a cell without a limit as undecided "
-            "(`figures/verdict.csv`, each model's source in its `provenance` column; `figures/diff.csv`, item "
-            "`verdict`).\n")
+            "(`figures/verdict.csv`, each model's source in its `provenance` column; `figures/diff.csv`, the rows "
+            "`verdict: ...` of Table 3).\n")
 
 
 def erosion_free_chaos(read) -> str:

@@ -205,7 +205,7 @@ def stopped_summary(params, sc, stop, wall):
     return {"scene": sc.name, "nose": params.nose, "velocity": float(params.velocity), "mass": sc.mass,
             "profile": params.profile, "element_size": settings.element_size,
             "target": dataclasses.asdict(TargetSpec.from_scene(sc.fe, cfg["target_radius"], cfg["block_depth"])),
-            "domain": domain_of(settings), "friction": sc.friction,
+            "domain": domain_of(settings), "friction": getattr(sc, "friction", 0.0),
             "status": "stopped", "diagnostic": str(stop), "depth_m": nan, "wall_time_s": wall, "steps": nan,
             "elements": nan, "energy_error_max": nan, "eroded_mass_kg": 0.0, "ejected_mass_kg": nan,
             "crater_debris_mass_kg": nan, "wall_debris_mass_kg": nan, "remap_energy_j": nan}
