@@ -230,44 +230,39 @@ def fe_ensemble_shot(inputs, outputs, params):
     cent); the members measure that spread. The velocity change itself moves
     the depth by at most 2 x member x velocity_step of it (DOP grows at most as v^2).
     """
-    member, step = int(params.member), float(params.velocity_step)
-    if member < 1:
-        raise ValueError(f"ensemble member {member}; allowed: >= 1 (member 0 is the shot itself)")
-    if not 0.0 < step <= 1e-6:
-        raise ValueError(f"fe_ensemble.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
-                         "the chaos, not a change of the shot)")
-    factor = 1.0 + member * step
-    summary, r, spec, sc = scene_shot(inputs, params, factor)
-    write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
-                "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
+    realised_shot(inputs, outputs, params, "ensemble member", "fe_ensemble.velocity_step")
 
 
 @task
 def fe_realisation(inputs, outputs, params):
     """A realisation of any FE scene's shot (config fe_realisations): the shot at v (1 + member x velocity_step),
     member >= 1 (member 0 is the scene's own shot); its summary with the member, the factor and the final velocity."""
+    realised_shot(inputs, outputs, params, "realisation member", "fe_realisations.velocity_step")
+
+
+def realised_shot(inputs, outputs, params, what, step_key):
+    """The shot of params at v (1 + member x velocity_step), member >= 1, written with the member, the factor, the
+    striking and the final velocity; an erosion-free one that stops is recorded as fe_shot records it (a realisation
+    without a depth), any other that stops fails. ``what``, ``step_key``: the names its errors give."""
     member, step = int(params.member), float(params.velocity_step)
     if member < 1:
-        raise ValueError(f"realisation member {member}; allowed: >= 1 (member 0 is the scene's own shot)")
+        raise ValueError(f"{what} {member}; allowed: >= 1 (member 0 is the shot itself)")
     if not 0.0 < step <= 1e-6:
-        raise ValueError(f"fe_realisations.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation "
-                         "of the chaos, not a change of the shot)")
+        raise ValueError(f"{step_key} = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of the chaos, not a "
+                         "change of the shot)")
     factor = 1.0 + member * step
     t0 = time.perf_counter()
     try:
         summary, r, spec, sc = scene_shot(inputs, params, factor)
+        final = float(r.histories["velocity"][-1])
     except Unstable as stop:
-        # as fe_shot: an erosion-free realisation that stops is a result of its study (a realisation without a depth)
         sc = scene_from_inputs(inputs, FE)
         if sc.fe.get("formulation") != "erosion_free":
             raise
         print(f"stopped: {stop}", flush=True)
-        summary = stopped_summary(params, sc, stop, time.perf_counter() - t0)
-        write_json({**summary, "member": member, "velocity_factor": factor,
-                    "striking_velocity": summary["velocity"] * factor, "final_velocity_m_s": float("nan")}, outputs.json)
-        return
+        summary, final = stopped_summary(params, sc, stop, time.perf_counter() - t0), float("nan")
     write_json({**summary, "member": member, "velocity_factor": factor, "striking_velocity": summary["velocity"] * factor,
-                "final_velocity_m_s": float(r.histories["velocity"][-1])}, outputs.json)
+                "final_velocity_m_s": final}, outputs.json)
 
 
 @task
