@@ -52,7 +52,8 @@ RESEARCH = study_outputs("workflow/studies.yaml", "workflow/schemas/studies.sche
     "profile": ["full", "ci"], "band": BAND_PROFILES, "shot": list(config["fe_erosion_free"]["window"]["shots"]),
     "t3shot": list(config["fe_realisations"]["window"]["shots"]),
     "rv": [f"{v:g}" for v in config["fe_realisations"]["velocities"]], "utarget": list(config["fe_realisations"]["unstated"]),
-    "fs": [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]]}, CHECK_STUDIES)
+    "fs": [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]],
+    "slevel": list(config["scale_effect"]["levels"])}, CHECK_STUDIES)
 STUDY_OUTPUTS = [path for paths in RESEARCH.values() for path in paths]
 
 

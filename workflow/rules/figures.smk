@@ -313,3 +313,20 @@ use rule accuracy_trajectory as sweep_figures with:
 
 rule sweep:
     input: rules.sweep_figures.output,
+
+
+# The scale effect at one level (a study): its one factor calibrated on the laboratory shots with each variant of
+# config scale_effect (concrete/size.py) and without it, scored by leaving each series out, and DO1 predicted.
+rule scale_validation:
+    input: **task("tasks.scale"), shots=config["validation"]["shots"], reference=config["reference"],
+           do1="results/geometry/double_ogive_table4.json",
+    output: csv="figures/scale/calibration_{level}.csv", predictions="figures/scale/predictions_{level}.csv",
+            summary="figures/scale/validation_{level}.csv", do1="figures/scale/do1_{level}.csv",
+    params: cfg=cfg_slice("concrete", "cavity", "validation", "scale_effect"), shots_path=config["validation"]["shots"],
+            shot=config["calibration"]["do1"], level=lambda w: w.level,
+    wildcard_constraints: level="analytic|cavity"
+    threads: 1
+    resources: mem_mb=2000, runtime=120
+    benchmark: "results/benchmarks/scale_validation_{level}.tsv"
+    log: "results/logs/scale_validation_{level}.log",
+    script: "../scripts/run_task.py"

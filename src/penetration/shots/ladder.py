@@ -39,6 +39,7 @@ from ..cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
 from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
+from ..concrete.size import SizeEffect, resistance_factor
 from ..errors import ParameterError
 from ..levels import LEVELS
 from ..nose.geometry import NOSES, Flat, Ogive, make_nose
@@ -128,6 +129,8 @@ class Context:
     """
     base: HJC = field(default_factory=HJC)
     strength_law: str = "li_chen"
+    strength_factor_scale: float = 1.0     # a factor on the law's S (the closed forms' calibration; 1: the law as published)
+    size: SizeEffect | None = None         # the scale effect (concrete.size), None: every level scale-free
     strength_scale: float | None = None
     strength_scale_source: str = ""
     strength_scale_record: str = "figures/calibration_cavity_laboratory.csv"   # named when the scale is missing
@@ -162,13 +165,24 @@ class Context:
 
 
 def _target(shot: UserShot, ctx: Context) -> Target:
-    return Target(shot.density, shot.fc, float(strength_factor(shot.fc, ctx.strength_law)))
+    """The closed forms' target: S of the context's law, times its calibration factor and the scale effect's factor
+    at the shot's calibre and striking velocity (V/d, concrete.size) where the context has one."""
+    S = float(strength_factor(shot.fc, ctx.strength_law)) * ctx.strength_factor_scale
+    if ctx.size is not None:
+        S *= float(resistance_factor(ctx.size, 2.0 * shot.nose.radius, shot.velocity))
+    return Target(shot.density, shot.fc, S)
+
+
+def _s_note(ctx):
+    """How the closed forms' S was made, for a result's notes."""
+    return (f"S from {ctx.strength_law}" + (f" times {ctx.strength_factor_scale:.6g}" if ctx.strength_factor_scale != 1.0
+                                            else "") + (f", scale effect {'+'.join(ctx.size.mechanisms)}" if ctx.size else ""))
 
 
 def _analytic(shot, ctx):
     n = nstar(shot.nose)
     depth, t, peak = closed_form(shot.mass, shot.nose.radius, n, _target(shot, ctx), shot.velocity)
-    return LevelResult("analytic", depth, t, peak, 0.0, notes=f"S from {ctx.strength_law}")
+    return LevelResult("analytic", depth, t, peak, 0.0, notes=_s_note(ctx))
 
 
 def _from_trajectory(level, tr, notes):
@@ -179,7 +193,7 @@ def _from_trajectory(level, tr, notes):
 def _trajectory(shot, ctx):
     asm = assemble(TRAJECTORY_EFFECTS, shot.nose, nstar(shot.nose), shot.mass, _target(shot, ctx), shot.velocity)
     tr = integrate(asm, shot.mass, shot.velocity, rtol=ctx.trajectory_rtol)
-    return _from_trajectory("trajectory", tr, f"effects {'+'.join(TRAJECTORY_EFFECTS)}, S from {ctx.strength_law}")
+    return _from_trajectory("trajectory", tr, f"effects {'+'.join(TRAJECTORY_EFFECTS)}, {_s_note(ctx)}")
 
 
 def _need(value, name, how, owner="levels"):
@@ -189,11 +203,18 @@ def _need(value, name, how, owner="levels"):
 
 
 def cavity_material(shot: UserShot, ctx: Context) -> HJC:
-    """The cavity level's concrete of a shot: the base set scaled to its fc and density, at the DO1 strength scale."""
+    """The cavity level's concrete of a shot: the base set scaled to its fc and density, at the calibrated strength
+    scale, times the scale effect's fracture factor at the shot's calibre where the context has the effect."""
     rec = ctx.strength_scale_record
     scale = _need(ctx.strength_scale, "strength_scale", f"the cavity level's calibration (its committed record {rec}: "
                   f"snakemake -c2 {rec}; or --calibration do1|laboratory|FILE, or give a strength scale: "
                   "--strength-scale)")
+    if ctx.size is not None:
+        if "rate" in ctx.size.mechanisms:
+            raise ParameterError("size", "mechanisms", list(ctx.size.mechanisms), "at the cavity level: fracture only "
+                                 "(its rate mechanism belongs in the material's rate law, which the cavity level does "
+                                 "not carry yet)")
+        scale *= float(resistance_factor(ctx.size, 2.0 * shot.nose.radius, shot.velocity))
     return shot_concrete(ctx.base, shot.fc, shot.density, scale)
 
 

@@ -1,0 +1,39 @@
+"""The scale effect's validation read off the laboratory calibrations (tables in, tables out).
+
+A level's factor fitted on one series alone against the other's says whether the level carries the two calibres
+(26.9 mm and 76.2 mm) with one constant: their ratio is 1 for a level that does. The leave-one-series-out
+predictions, pooled over both held-out series, score the level out of sample; DO1 (140 mm) is a test no fit saw.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .laboratory import errors_summary
+
+VARIANT = ["variant", "mechanisms", "beyond", "aggregate_m", "lambda0", "transitional_size_m"]
+
+
+def split_summary(fits, predictions, do1, series):
+    """One row per (level, variant): the factor fitted on each series alone (the folds whose fit holds one series),
+    their ratio (largest over smallest), the pooled held-out errors of the leave-one-series-out folds with each
+    series' mean signed error, and DO1's error at the factor of all shots."""
+    rows = []
+    keys = ["level", "variant"]
+    for (level, variant), f in fits.groupby(keys, sort=False):
+        p = predictions[(predictions.level == level) & (predictions.variant == variant)
+                        & predictions.fold.str.startswith("series:")]
+        alone = {s: f.loc[f.fit_series == s, "value"] for s in series}
+        values = {s: float(v.iloc[0]) for s, v in alone.items() if len(v)}
+        d = do1[(do1.level == level) & (do1.variant == variant)]
+        row = {"level": level, **{c: f[c].iloc[0] for c in VARIANT}, "parameter": f.parameter.iloc[0],
+               "value_all": float(f.loc[f.fold == "all", "value"].iloc[0]),
+               **{f"value_{s}": values.get(s, np.nan) for s in series},
+               "split_ratio": max(values.values()) / min(values.values()) if len(values) == len(series) else np.nan}
+        loso = errors_summary(p.rel_error.to_numpy())
+        row.update({f"loso_{k}": v for k, v in loso.items()})
+        row.update({f"mean_rel_err_{s}": float(p.loc[p.series == s, "rel_error"].mean()) for s in series})
+        row.update({"do1_pred_m": float(d.dop_pred_m.iloc[0]) if len(d) else np.nan,
+                    "do1_rel_error": float(d.rel_error.iloc[0]) if len(d) else np.nan})
+        rows.append(row)
+    return pd.DataFrame(rows)

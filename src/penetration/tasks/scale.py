@@ -1,0 +1,76 @@
+"""Tasks of the scale effect (``scale``): a level's one factor calibrated on the laboratory shots with each variant
+of the effect (concrete.size) and without it, by the protocol of validation.laboratory, each fold scored on the shots
+it held out, and DO1 (140 mm) predicted by the fold of all laboratory shots: a test no fit has seen."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..concrete.size import SizeEffect
+from ..paper import reference
+from ..pipeline.io import read_inference, read_rows, task, write_csv
+from ..shots.ladder import UserShot, run
+from ..shots.records import context_from_files
+from ..studies.laboratory import Protocol
+from ..studies.scale import split_summary
+from .common import do1_shot
+from .laboratory import FITTED, calibrate_on_laboratory
+
+
+def size_effect(spec) -> SizeEffect | None:
+    """A variant of the config's scale_effect.variants as the effect (None: without it)."""
+    if spec is None:
+        return None
+    return SizeEffect(**{**spec, "mechanisms": tuple(spec["mechanisms"])})
+
+
+def variant_columns(name, effect: SizeEffect | None):
+    """The columns that say which variant a row belongs to."""
+    if effect is None:
+        return {"variant": name, "mechanisms": "none", "beyond": "", "aggregate_m": np.nan, "lambda0": np.nan,
+                "transitional_size_m": np.nan}
+    uses_fracture = "fracture" in effect.mechanisms
+    return {"variant": name, "mechanisms": "+".join(effect.mechanisms),
+            "beyond": effect.beyond if "rate" in effect.mechanisms else "",
+            "aggregate_m": effect.aggregate if uses_fracture else np.nan,
+            "lambda0": effect.lambda0 if uses_fracture else np.nan,
+            "transitional_size_m": effect.transitional_size if uses_fracture else np.nan}
+
+
+@task
+def scale_validation(inputs, outputs, params):
+    """The scale effect's variants at one level: the calibrations (csv), the held-out predictions, the summary of
+    each variant (the two series' fitted factors and their ratio, the pooled leave-one-series-out errors) and DO1."""
+    cfg, level = params.cfg, params.level
+    lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
+    grid = study["s_scales"] if level == "analytic" else lab[{"cavity": "strength_scales",
+                                                              "fe": "failure_strains"}[level]]
+    protocol = Protocol.from_config(lab, grid)
+    _, rows = read_rows(inputs.shots)
+    refs = reference.load_reference(inputs.reference)
+    mass, vs, depth = do1_shot(refs, params.shot)
+    nose = read_inference(inputs.do1)["nose"]
+    fits, predictions, do1 = [], [], []
+    for name in study["levels"][level]:
+        effect = size_effect(study["variants"][name])
+        ctx = context_from_files(cfg, inputs.reference)
+        ctx.size = effect
+        print(f"{level}, variant {name}: calibrating on {len(rows)} laboratory shots", flush=True)
+        f, p, _, timing = calibrate_on_laboratory(level, ctx, rows, protocol, params.shots_path,
+                                                  lambda m: print("  " + m, flush=True))
+        cols = variant_columns(name, effect)
+        fits.append(f.assign(**cols, grid_wall_time_s=float(timing.wall_time_s.iloc[0])))
+        predictions.append(p.assign(level=level, **cols))
+        value = float(f.loc[f.fold == "all", "value"].iloc[0])
+        setattr(ctx, FITTED[level][0], value)
+        shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1")
+        r = run(shot, level, ctx)
+        do1.append({"level": level, **cols, "calibration": "laboratory (fold all)", "parameter": FITTED[level][1],
+                    "value": value, "dop_pred_m": r.depth_m, "dop_m": depth, "rel_error": r.depth_m / depth - 1,
+                    "status": r.status})
+        print(f"  DO1: {r.depth_m:.4g} m against the measured {depth:.4g} m", flush=True)
+    fits, predictions, do1 = pd.concat(fits), pd.concat(predictions), pd.DataFrame(do1)
+    write_csv(fits, outputs.csv)
+    write_csv(predictions, outputs.predictions)
+    write_csv(split_summary(fits, predictions, do1, list(protocol.series)), outputs.summary)
+    write_csv(do1, outputs.do1)

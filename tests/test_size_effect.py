@@ -1,0 +1,93 @@
+"""The scale effect (concrete.size) and how the levels take it: each mechanism is its published relation at the
+level's rate and calibre; without the effect the closed form is scale-free (geometrically similar shots reach the
+same depth over calibre, dimensional analysis), with it a larger calibre goes more calibres deep."""
+import numpy as np
+import pytest
+
+from penetration.analytic.dop import penetration_depth
+from penetration.analytic.resistance import Target, strength_factor
+from penetration.concrete import scale
+from penetration.concrete.size import SIZE_MECHANISMS, SizeEffect, resistance_factor
+from penetration.errors import ParameterError
+from penetration.nose.geometry import Ogive
+from penetration.nose.nstar import nstar
+from penetration.shots.ladder import Context, UserShot, run
+
+FC, RHO = 40e6, 2300.0
+
+
+def similar_shot(d, v=450.0):
+    """CRH 3, 8 calibres long at the DO1 projectile's density ratio: mass as d^3."""
+    return UserShot(Ogive(3.0, d / 2), 81.1 * (d / 0.14) ** 3, v, FC, RHO)
+
+
+@pytest.mark.parametrize("name", sorted(SIZE_MECHANISMS))
+def test_each_mechanism_is_its_published_relation(name):
+    e = SizeEffect(mechanisms=(name,), beyond="extrapolate", aggregate=0.016)
+    d, v = np.array([0.0269, 0.0762, 0.14]), np.array([600.0, 300.0, 835.0])
+    expected = {"rate": scale.dif_compression_mc2010(v / d, beyond="extrapolate"),
+                "fracture": scale.size_effect_factor(d, 25.0 * 0.016)}[name]
+    np.testing.assert_allclose(resistance_factor(e, d, v), expected, rtol=1e-14)
+
+
+def test_the_factor_is_the_product_of_the_mechanisms_and_one_without_the_effect():
+    e = SizeEffect(mechanisms=("rate", "fracture"))
+    both = resistance_factor(e, 0.076, 300.0)
+    assert both == pytest.approx(resistance_factor(e, 0.076, 300.0, ["rate"]) * resistance_factor(e, 0.076, 300.0,
+                                                                                                  ["fracture"]))
+    assert resistance_factor(None, 0.076, 300.0) == 1.0
+
+
+def test_without_the_effect_the_closed_form_is_scale_free():
+    ctx = Context()
+    x = [run(similar_shot(d), "analytic", ctx).depth_m / d for d in (0.01, 0.05, 0.25)]
+    np.testing.assert_allclose(x, x[0], rtol=1e-12)
+
+
+@pytest.mark.parametrize("mechanisms", [("fracture",), ("rate",), ("rate", "fracture")])
+def test_with_the_effect_a_larger_calibre_goes_more_calibres_deep(mechanisms):
+    ctx = Context(size=SizeEffect(mechanisms=mechanisms, beyond="extrapolate"))
+    x = [run(similar_shot(d), "analytic", ctx).depth_m / d for d in (0.01, 0.05, 0.25)]
+    assert np.all(np.diff(x) > 0)
+
+
+def test_the_analytic_level_is_eq9_with_the_scaled_s():
+    """Eq 9 with S times the calibration factor and the effect's factor, computed here directly."""
+    shot = similar_shot(0.0762, 312.5)
+    e = SizeEffect(mechanisms=("rate", "fracture"), beyond="cap", aggregate=0.008)
+    ctx = Context(size=e, strength_factor_scale=0.7)
+    S = strength_factor(FC) * 0.7 * resistance_factor(e, 0.0762, 312.5)
+    expected = penetration_depth(shot.mass, shot.nose.radius, nstar(shot.nose), Target(RHO, FC, S), 312.5)
+    assert run(shot, "analytic", ctx).depth_m == pytest.approx(float(expected), rel=1e-12)
+    assert run(shot, "trajectory", ctx).depth_m == pytest.approx(float(expected), rel=1e-6)
+
+
+def test_the_cavity_level_refuses_the_rate_mechanism_it_does_not_carry():
+    ctx = Context(size=SizeEffect(mechanisms=("rate",)), strength_scale=1.0)
+    with pytest.raises(ParameterError, match="mechanisms"):
+        run(similar_shot(0.05), "cavity", ctx)
+
+
+@pytest.mark.parametrize("fields, name", [({"mechanisms": ("size",)}, "mechanisms"), ({"mechanisms": ()}, "mechanisms"),
+                                          ({"beyond": "clip"}, "beyond"), ({"aggregate": 0.5}, "aggregate"),
+                                          ({"lambda0": 0.0}, "lambda0")])
+def test_bad_settings_name_the_field(fields, name):
+    with pytest.raises(ParameterError, match=name):
+        SizeEffect(**fields)
+
+
+def test_split_summary_reads_each_series_fit_and_pools_the_held_out_errors():
+    import pandas as pd
+    from penetration.studies.scale import VARIANT, split_summary
+    v = {c: "" for c in VARIANT}
+    v["variant"] = "none"
+    fits = pd.DataFrame([{"level": "analytic", **v, "parameter": "s_scale", "fold": f, "fit_series": s, "value": x}
+                         for f, s, x in (("all", "a;b", 0.9), ("series:a", "b", 1.0), ("series:b", "a", 0.5))])
+    preds = pd.DataFrame([{"level": "analytic", "variant": "none", "fold": f"series:{s}", "series": s, "rel_error": e}
+                          for s, e in (("a", 0.1), ("a", -0.3), ("b", 0.2), ("b", 0.0))] +
+                         [{"level": "analytic", "variant": "none", "fold": "fc_group:a:x", "series": "a", "rel_error": 9.0}])
+    do1 = pd.DataFrame([{"level": "analytic", "variant": "none", "dop_pred_m": 4.0, "rel_error": 4.0 / 5.1 - 1}])
+    row = split_summary(fits, preds, do1, ["a", "b"]).iloc[0]
+    assert row.value_a == 0.5 and row.value_b == 1.0 and row.split_ratio == 2.0
+    assert row.loso_shots == 4 and row.loso_median_abs_rel_err == pytest.approx(0.15)
+    assert row.mean_rel_err_a == pytest.approx(-0.1) and row.do1_pred_m == 4.0
