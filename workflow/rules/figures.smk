@@ -330,3 +330,17 @@ rule scale_validation:
     benchmark: "results/benchmarks/scale_validation_{level}.tsv"
     log: "results/logs/scale_validation_{level}.log",
     script: "../scripts/run_task.py"
+
+
+# Geometric similarity (a study): X/d against calibre at each level with the scale effect's variants, their factors
+# calibrated by scale_validation, beside the empirical formulas' size laws.
+rule scale_similarity:
+    input: **task("tasks.scale"), reference=config["reference"],
+           calibrations=[f"figures/scale/calibration_{level}.csv" for level in config["scale_effect"]["similarity"]["levels"]],
+    output: csv="figures/scale/similarity.csv", png="figures/scale/similarity.png",
+    params: cfg=cfg_slice("concrete", "cavity", "validation", "scale_effect"), dpi=config["figures"]["dpi"],
+    threads: 1
+    resources: mem_mb=2000, runtime=30
+    benchmark: "results/benchmarks/scale_similarity.tsv"
+    log: "results/logs/scale_similarity.log",
+    script: "../scripts/run_task.py"

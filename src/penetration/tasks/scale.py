@@ -6,7 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..analytic.empirical import EMPIRICAL_DEPTHS, NDRC_NOSE_FACTORS
 from ..concrete.size import SizeEffect
+from ..figures.scale import similarity_figure
+from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
@@ -74,3 +77,50 @@ def scale_validation(inputs, outputs, params):
     write_csv(predictions, outputs.predictions)
     write_csv(split_summary(fits, predictions, do1, list(protocol.series)), outputs.summary)
     write_csv(do1, outputs.do1)
+
+
+def similar_shots(spec, refs):
+    """The similarity figure's shots: an ogive of the spec's CRH at each calibre, the mass DO1's M/d^3 times d^3."""
+    per_volume = refs["table2.mass"].si / refs["table2.diameter"].si ** 3
+    return [UserShot(Ogive(spec["crh"], d / 2), per_volume * d ** 3, spec["velocity"], spec["fc"], spec["density"],
+                     label=f"{d * 1e3:g} mm") for d in spec["calibres"]]
+
+
+@task
+def scale_similarity(inputs, outputs, params):
+    """Depth over calibre against calibre under geometric similarity at each level, with each variant's factor
+    calibrated on the laboratory shots (scale_validation, fold all), and the empirical formulas' size laws."""
+    cfg = params.cfg
+    study, spec = cfg["scale_effect"], cfg["scale_effect"]["similarity"]
+    refs = reference.load_reference(inputs.reference)
+    shots = similar_shots(spec, refs)
+    calibrations = pd.concat([pd.read_csv(p) for p in inputs.calibrations])
+    rows = []
+    for level, variants in spec["levels"].items():
+        for name in variants:
+            cal = calibrations[(calibrations.level == level) & (calibrations.variant == name)
+                               & (calibrations.fold == "all")]
+            if len(cal) != 1:
+                raise ValueError(f"scale_effect.similarity.levels.{level}: variant {name!r} has no calibration "
+                                 f"(fold all) in {list(inputs.calibrations)}")
+            ctx = context_from_files(cfg, inputs.reference)
+            ctx.size = size_effect(study["variants"][name])
+            setattr(ctx, FITTED[level][0], float(cal.value.iloc[0]))
+            for s in shots:
+                r = run(s, level, ctx)
+                d = 2 * s.nose.radius
+                rows.append({"kind": "level", "level": level, **variant_columns(name, ctx.size),
+                             "parameter": FITTED[level][1], "value": float(cal.value.iloc[0]), "calibre_m": d,
+                             "mass_kg": s.mass, "velocity_ms": s.velocity, "depth_m": r.depth_m,
+                             "depth_over_calibre": r.depth_m / d, "status": r.status})
+        print(f"{level}: {len(variants)} variants at {len(shots)} calibres", flush=True)
+    for name, depth in EMPIRICAL_DEPTHS.items():
+        args = ((NDRC_NOSE_FACTORS[spec["ndrc_nose"]],) if name == "ndrc" else ())
+        for s in shots:
+            d = 2 * s.nose.radius
+            x = float(depth(s.mass, d, s.fc, s.velocity, *args))
+            rows.append({"kind": "empirical", "level": name, "variant": "", "calibre_m": d, "mass_kg": s.mass,
+                         "velocity_ms": s.velocity, "depth_m": x, "depth_over_calibre": x / d, "status": "formula"})
+    table = pd.DataFrame(rows)
+    write_csv(table, outputs.csv)
+    similarity_figure(table, spec, outputs.png, params.dpi)
