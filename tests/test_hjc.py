@@ -218,15 +218,16 @@ def test_extended_crushing_lock_keeps_mul_as_offset_and_meets_the_dense_curve_at
     assert out["p"][-1] == pytest.approx(ext.k1 * xb + ext.k2 * xb**2 + ext.k3 * xb**3, rel=1e-6)
 
 
-@pytest.mark.parametrize("tension", ["openradioss", "sphinxsys"])
-def test_quick_update_equals_the_full_point_update(tension):
+@pytest.mark.parametrize("tension, rate_law", [("openradioss", "hjc"), ("sphinxsys", "hjc"),
+                                               ("openradioss", "mc2010_extrapolate"), ("openradioss", "mc2010_cap")])
+def test_quick_update_equals_the_full_point_update(tension, rate_law):
     """hjc.quick_update (the FE level's vectorised shortcut) against update_point on random states across the
     three EOS regions, loading and unloading, compression and tension, damaged, intact and fully damaged, slow and
-    fast: wherever the shortcut claims validity it must give update_point's stress, pressure, mu_max and plastic
-    strain increment, with the damage and mu_p unchanged."""
+    fast, with HJC's rate factor or MC2010's: wherever the shortcut claims validity it must give update_point's
+    stress, pressure, mu_max and plastic strain increment, with the damage and mu_p unchanged."""
     from penetration.concrete.hjc import permanent_strain, power_chords, quick_update, update_point
 
-    mat = HJC(tension=tension)
+    mat = HJC(tension=tension, rate_law=rate_law)
     q = mat.as_array()
     chords = power_chords(q)
     rng = np.random.default_rng(7)
@@ -393,3 +394,20 @@ def test_point_update_equals_a_branching_transcription_bit_for_bit(fields):
         counts["tension"] += ref[0] < 0
         counts["unload"] += mu < mu_max
     assert min(counts.values()) > 0.05 * n, counts
+
+
+@pytest.mark.parametrize("law, beyond", [("mc2010_cap", "cap"), ("mc2010_extrapolate", "extrapolate")])
+def test_the_mc2010_rate_law_multiplies_the_rate_free_surface_by_the_codes_factor(law, beyond):
+    """strength() with MC2010's law = the rate-free surface times dif_compression_mc2010 (Smax out of reach); the
+    rate switch turns either law off."""
+    import dataclasses
+    from penetration.concrete import scale
+    from penetration.concrete.hjc import strength
+    m = HJC(smax=1e6)
+    q_law, q_free = dataclasses.replace(m, rate_law=law).as_array(), dataclasses.replace(m, rate=False).as_array()
+    for p, D in ((50e6, 0.0), (400e6, 0.3), (-1e6, 0.1)):
+        for rate in (1e-3, 10.0, 100.0, 1e3, 3e4):
+            assert strength(p, D, rate, q_law) == pytest.approx(
+                strength(p, D, rate, q_free) * scale.dif_compression_mc2010(rate, beyond=beyond), rel=1e-12)
+    off = dataclasses.replace(m, rate_law=law, rate=False).as_array()
+    assert strength(400e6, 0.0, 3e4, off) == strength(400e6, 0.0, 3e4, q_free)

@@ -62,10 +62,21 @@ def test_the_analytic_level_is_eq9_with_the_scaled_s():
     assert run(shot, "trajectory", ctx).depth_m == pytest.approx(float(expected), rel=1e-6)
 
 
-def test_the_cavity_level_refuses_the_rate_mechanism_it_does_not_carry():
-    ctx = Context(size=SizeEffect(mechanisms=("rate",)), strength_scale=1.0)
+def test_the_simulation_levels_carry_the_rate_mechanism_in_their_material():
+    """The cavity and fe levels take MC2010's factor at each point's rate (the material's rate law), the cavity level
+    the fracture factor on its strength scale; the fe level refuses fracture (no crack band yet)."""
+    from penetration.shots.ladder import cavity_material, fe_material
+    shot = similar_shot(0.05)
+    e = SizeEffect(mechanisms=("rate", "fracture"), beyond="cap", aggregate=0.01)
+    ctx = Context(size=e, strength_scale=0.8)
+    m = cavity_material(shot, ctx)
+    assert m.rate_law == "mc2010_cap"
+    plain = cavity_material(shot, Context(strength_scale=0.8))
+    assert plain.rate_law == "hjc"
+    assert m.strength_scale == pytest.approx(plain.strength_scale * float(scale.size_effect_factor(0.05, 0.25)))
+    assert fe_material(shot, Context(size=SizeEffect(mechanisms=("rate",)))).rate_law == "mc2010_extrapolate"
     with pytest.raises(ParameterError, match="mechanisms"):
-        run(similar_shot(0.05), "cavity", ctx)
+        fe_material(shot, ctx)
 
 
 @pytest.mark.parametrize("fields, name", [({"mechanisms": ("size",)}, "mechanisms"), ({"mechanisms": ()}, "mechanisms"),

@@ -28,7 +28,10 @@ parameter where codes disagree:
   sigma* = A max(0, 1 - D + p/T), zero at the damaged cutoff -T(1 - D).
 - Rate term (``rate_floor``): eps_dot* is floored at 1 so that the rate
   term never weakens the material (OpenRadioss, SPHinXsys); Smax caps the
-  normalised strength after the rate factor.
+  normalised strength after the rate factor. ``rate_law`` replaces the
+  factor 1 + C ln(eps_dot*) by fib Model Code 2010's compressive factor
+  (concrete.scale), capped at the code's 300 1/s or continued beyond: the
+  scale effect's rate mechanism (concrete.size), off by default.
 - Damage: D += (d eps_p + d mu_p)/max(EFMIN, D1 (P* + T*)^D2), with mu_p the
   permanent crush strain mu_max - p_max/K_unload, frozen once fully dense.
 - Tension cut-off p >= -T(1 - D) in every region, re-applied after the
@@ -61,14 +64,18 @@ import numpy as np
 from numba import njit
 
 from ..errors import ParameterError
+from .scale import dif_compression_mc2010_point
 
 # indices into the parameter array used by the compiled kernels
 (I_RHO0, I_G, I_A, I_B, I_C, I_N, I_FC, I_T, I_EPS0, I_EFMIN, I_SMAX, I_PC, I_MUC, I_PL, I_MUL, I_D1, I_D2,
  I_K1, I_K2, I_K3, I_KE, I_MULOCK, I_TENSION, I_RATEFLOOR, I_SCALE, I_DAMAGE, I_EROSION,
- I_HOOP) = range(28)
+ I_HOOP, I_RATELAW) = range(29)
 I_MUCRUSH = I_MUL  # the slot of mul holds the end of crushing (mul, or 0.1106 for the extended convention)
 LOCKS = ("offset", "literal", "extended")
 TENSIONS = ("openradioss", "sphinxsys")
+# the strength's rate factor: HJC's 1 + C ln(eps_dot*) (Eq 17), or fib MC2010's compressive factor (concrete.scale)
+# capped at 300 1/s or with its cube-root branch continued (the scale effect's rate mechanism, concrete.size)
+RATE_LAWS = ("hjc", "mc2010_cap", "mc2010_extrapolate")
 
 
 @dataclass(frozen=True)
@@ -102,6 +109,7 @@ class HJC:
     strength_scale: float = 1.0
     erosion_strain: float = math.inf
     hoop_cutoff: bool = False
+    rate_law: str = "hjc"
 
     def __post_init__(self):
         positive = ("rho0", "G", "A", "fc", "T", "eps0", "efmin", "smax", "pc", "muc", "pl", "mul", "D1", "k1")
@@ -122,6 +130,8 @@ class HJC:
             raise ParameterError("hjc", "lock", self.lock, f"one of {LOCKS}")
         if self.tension not in TENSIONS:
             raise ParameterError("hjc", "tension", self.tension, f"one of {TENSIONS}")
+        if self.rate_law not in RATE_LAWS:
+            raise ParameterError("hjc", "rate_law", self.rate_law, f"one of {RATE_LAWS}")
 
     @property
     def Ke(self):
@@ -158,7 +168,7 @@ class HJC:
                 self.pc, self.muc, self.pl, self.mu_crush_end, self.D1, self.D2, self.k1, self.k2, self.k3, self.Ke,
                 self.mu_lock, float(TENSIONS.index(self.tension)), float(self.rate_floor),
                 self.strength_scale, float(self.damage), min(self.erosion_strain, 1e300),
-                float(self.hoop_cutoff)]
+                float(self.hoop_cutoff), float(RATE_LAWS.index(self.rate_law)) if self.rate else 0.0]
         return np.array(vals, float)
 
 
@@ -287,6 +297,8 @@ def strength(p, D, rate, q):
     r = max(r, 1.0) if q[I_RATEFLOOR] > 0.5 else r
     # ln 1 = 0 exactly: r = 1 (or r <= 0, NaN) gives the factor 1, and C = 0 switches the rate term off
     factor = 1.0 + q[I_C] * math.log(r if ((r > 0.0) & (r != 1.0)) else 1.0)
+    if q[I_RATELAW] > 0.5:   # a parameter switch, the same for every point
+        factor = dif_compression_mc2010_point(rate, q[I_RATELAW] > 1.5)
     ps = p / fc
     comp = q[I_A] * (1.0 - D) + q[I_B] * max(ps, 0.0) ** q[I_N]
     # both tensile branches computed, one selected (parameters read before a select, & for and: numba's reference
@@ -363,7 +375,8 @@ def quick_update(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, rate,
     <= mu_c, or unloading below mu_max, so mu_p does not grow):
     (a) no plastic flow: the trial deviator lies below a lower bound of the
         strength surface: x^N by its chords (power_chords), the rate factor
-        1 + C ln r by 1 + C (1 - 1/r) (the rate floor on, or C = 0);
+        1 + C ln r by 1 + C (1 - 1/r) (the rate floor on, or C = 0), MC2010's
+        factor (rate_law) by 1;
     (b) fully damaged (D = 1) and not in compression: the strength is 0, the
         deviator returns to 0 and the plastic strain grows by seq/3G; the damage
         stays 1.
@@ -398,7 +411,8 @@ def quick_update(s0, s1, s2, s3, mu, mu_max, D, eps_p, de0, de1, de2, de3, rate,
     tens = q[I_A] * (1.0 + p / q[I_T]) * (1.0 - D) if q[I_TENSION] < 0.5 else q[I_A] * max(0.0, 1.0 - D + p / q[I_T])
     lower = comp if ps >= 0.0 else max(tens, 0.0)
     factor = 1.0 + q[I_C] * max(0.0, 1.0 - q[I_EPS0] / max(rate, 1e-300)) if q[I_RATEFLOOR] > 0.5 else 1.0
-    no_flow = ((eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0))
+    factor = factor if q[I_RATELAW] < 0.5 else 1.0       # MC2010's factor is >= 1: 1 bounds it below
+    no_flow = ((eps_p < q[I_EROSION]) & ((q[I_RATEFLOOR] > 0.5) | (q[I_C] == 0.0) | (q[I_RATELAW] > 0.5))
                & (seq <= q[I_SCALE] * q[I_FC] * min(lower * factor, q[I_SMAX])))
     # (b) fully damaged outside compression
     spent = (D >= 1.0) & (p_eos <= 0.0)

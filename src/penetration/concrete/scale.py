@@ -18,6 +18,7 @@ strengths in MPa; the conversion is done here, once.
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from ..errors import ParameterError
 from ..units import GPA, MPA
@@ -45,16 +46,45 @@ def _positive(value, owner, name, unit):
     return v
 
 
-def _two_branch(r, r0, knee, low_exponent, high_coefficient):
+@njit(cache=True, inline="always")
+def two_branch(r, r0, knee, low_exponent, high_coefficient):
     """(r/r0)^low_exponent up to the knee, high_coefficient (r/r0)^(1/3) above; held at 1 below r0 (slower than
-    the codes' quasi-static reference, which no penetration is)."""
-    x = np.maximum(r / r0, 1.0)
-    return np.where(r <= knee, x ** low_exponent, high_coefficient * np.cbrt(x))
+    the codes' quasi-static reference, which no penetration is). One point: the material kernels call it."""
+    x = max(r / r0, 1.0)
+    return x ** low_exponent if r <= knee else high_coefficient * x ** (1.0 / 3.0)
+
+
+@njit(cache=True)
+def _two_branch_many(r, r0, knee, low_exponent, high_coefficient):
+    out = np.empty(r.size)
+    for i in range(r.size):
+        out[i] = two_branch(r[i], r0, knee, low_exponent[i], high_coefficient[i])
+    return out
+
+
+def _two_branch(r, r0, knee, low_exponent, high_coefficient):
+    """two_branch over arrays (the coefficients may vary with the strength: broadcast with the rates)."""
+    r, lo, hi = np.broadcast_arrays(np.asarray(r, float), np.asarray(low_exponent, float),
+                                    np.asarray(high_coefficient, float))
+    out = _two_branch_many(r.ravel().copy(), r0, knee, lo.ravel().copy(), hi.ravel().copy()).reshape(r.shape)
+    return out if r.ndim else float(out)
+
+
+# fib MC2010's compressive factor: reference rate, knee, low exponent, high coefficient
+MC2010_COMPRESSION = (30e-6, 30.0, 0.014, 0.012)
+
+
+@njit(cache=True, inline="always")
+def dif_compression_mc2010_point(rate, extrapolate):
+    """dif_compression_mc2010 at one rate, for the material kernels (``extrapolate``: beyond 300 1/s; else cap)."""
+    c = MC2010_COMPRESSION
+    return two_branch(rate if extrapolate else min(rate, RATE_LIMIT), c[0], c[1], c[2], c[3])
 
 
 def dif_compression_mc2010(rate, beyond="cap"):
-    """f_c,imp / f_cm: (rate/30e-6)^0.014 up to 30 1/s, 0.012 (rate/30e-6)^(1/3) above (fib MC2010, strain-rate effects in compression)."""
-    return _two_branch(_rates(rate, beyond, "dif_compression_mc2010"), 30e-6, 30.0, 0.014, 0.012)
+    """f_c,imp / f_cm: (rate/30e-6)^0.014 up to 30 1/s, 0.012 (rate/30e-6)^(1/3) above (fib MC2010, strain-rate
+    effects in compression)."""
+    return _two_branch(_rates(rate, beyond, "dif_compression_mc2010"), *MC2010_COMPRESSION)
 
 
 def dif_tension_mc2010(rate, beyond="cap"):

@@ -76,6 +76,14 @@ def _fracture(effect: SizeEffect, diameter, velocity):
     return scale.size_effect_factor(diameter, effect.transitional_size) * np.ones_like(np.asarray(velocity, float))
 
 
+def material_rate_law(effect: SizeEffect | None) -> str:
+    """The HJC rate law (concrete.hjc.RATE_LAWS) of a level that carries the rate mechanism in its material: MC2010's
+    factor with the effect's convention beyond 300 1/s, or HJC's own where the effect has no rate mechanism."""
+    if effect is None or "rate" not in effect.mechanisms:
+        return "hjc"
+    return f"mc2010_{effect.beyond}"
+
+
 def resistance_factor(effect: SizeEffect | None, diameter, velocity, mechanisms=None):
     """The factor on the static resistance of a shot of calibre ``diameter`` (m) struck at ``velocity`` (m/s): the
     product over the effect's mechanisms (or over ``mechanisms``, a subset of them); 1 without the effect."""

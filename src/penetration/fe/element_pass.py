@@ -23,7 +23,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..concrete.hjc import I_HOOP, power_chords, quick_update
+from ..concrete.hjc import I_RATELAW, power_chords, quick_update
 from .constitutive import HJC_KIND, longitudinal_modulus, update, wave_speed
 from .element import corners, energy_increment, equivalent_rate, length, moment, rates, rotate, row_forces, sound_shape
 from .erosion import erodes
@@ -34,7 +34,7 @@ from .state import (BAD_SHAPE, C_DT, C_DTMIN, C_EROSION, C_EROSION_VALUE, C_GUAR
                     STT, SZZ, TWO_PI, V0, VR, VZ, P)
 from .timestep import NO_STEP, criterion, row_step, stable_step, viscosity
 
-N_HJC = I_HOOP + 1  # length of an HJC parameter array
+N_HJC = I_RATELAW + 1  # length of an HJC parameter array
 _ONE = np.uint64(1)
 
 

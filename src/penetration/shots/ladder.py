@@ -39,7 +39,7 @@ from ..cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
 from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
-from ..concrete.size import SizeEffect, resistance_factor
+from ..concrete.size import SizeEffect, material_rate_law, resistance_factor
 from ..errors import ParameterError
 from ..levels import LEVELS
 from ..nose.geometry import NOSES, Flat, Ogive, make_nose
@@ -204,24 +204,32 @@ def _need(value, name, how, owner="levels"):
 
 def cavity_material(shot: UserShot, ctx: Context) -> HJC:
     """The cavity level's concrete of a shot: the base set scaled to its fc and density, at the calibrated strength
-    scale, times the scale effect's fracture factor at the shot's calibre where the context has the effect."""
+    scale; with the scale effect, times its fracture factor at the shot's calibre and with MC2010's rate factor at
+    each point's rate in place of HJC's (its rate mechanism)."""
     rec = ctx.strength_scale_record
     scale = _need(ctx.strength_scale, "strength_scale", f"the cavity level's calibration (its committed record {rec}: "
                   f"snakemake -c2 {rec}; or --calibration do1|laboratory|FILE, or give a strength scale: "
                   "--strength-scale)")
-    if ctx.size is not None:
-        if "rate" in ctx.size.mechanisms:
-            raise ParameterError("size", "mechanisms", list(ctx.size.mechanisms), "at the cavity level: fracture only "
-                                 "(its rate mechanism belongs in the material's rate law, which the cavity level does "
-                                 "not carry yet)")
-        scale *= float(resistance_factor(ctx.size, 2.0 * shot.nose.radius, shot.velocity))
-    return shot_concrete(ctx.base, shot.fc, shot.density, scale)
+    if ctx.size is not None and "fracture" in ctx.size.mechanisms:
+        scale *= float(resistance_factor(ctx.size, 2.0 * shot.nose.radius, shot.velocity, ["fracture"]))
+    return _with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density, scale), ctx)
+
+
+def _with_rate_law(material: HJC, ctx: Context) -> HJC:
+    """The material with the scale effect's rate law (the strength's factor at each point's own rate)."""
+    law = material_rate_law(ctx.size)
+    return material if law == "hjc" else dataclasses.replace(material, rate_law=law)
 
 
 def fe_material(shot: UserShot, ctx: Context) -> HJC:
     """The fe level's concrete of a shot: the base set scaled to its fc and density (its calibration, the failure
-    strain, belongs to the run settings)."""
-    return shot_concrete(ctx.base, shot.fc, shot.density)
+    strain, belongs to the run settings); with the scale effect's rate mechanism, MC2010's rate factor at each
+    element's rate in place of HJC's. The fracture mechanism needs the element size (a crack band), which the fe level
+    does not carry yet."""
+    if ctx.size is not None and "fracture" in ctx.size.mechanisms:
+        raise ParameterError("size", "mechanisms", list(ctx.size.mechanisms), "at the fe level: rate only (its "
+                             "fracture mechanism is a crack band on the element size, not carried yet)")
+    return _with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density), ctx)
 
 
 def check_table_span(shot: UserShot, ctx: Context):

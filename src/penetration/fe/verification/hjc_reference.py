@@ -35,10 +35,10 @@ from numba import njit
 def constants(material) -> np.ndarray:
     """The constants of an hjc.HJC in this module's layout (its conventions checked)."""
     m = material
-    if (m.lock, m.tension, m.rate_floor, m.strength_scale, m.hoop_cutoff) != ("offset", "openradioss", True, 1.0, False) \
-            or math.isfinite(m.erosion_strain):
+    if (m.lock, m.tension, m.rate_floor, m.strength_scale, m.hoop_cutoff, m.rate_law) != (
+            "offset", "openradioss", True, 1.0, False, "hjc") or math.isfinite(m.erosion_strain):
         raise ValueError("hjc_reference supports lock='offset', tension='openradioss', the rate floor, strength_scale 1, "
-                         "no hoop cut-off and no erosion strain")
+                         "no hoop cut-off, HJC's rate law and no erosion strain")
     roots = np.roots([m.k3, m.k2, m.k1, -m.pl])   # the dense curve reaches p_l at m = x
     x = min(r.real for r in roots if abs(r.imag) < 1e-12 and r.real > 0)
     k = np.zeros(23)
