@@ -230,7 +230,8 @@ def next_mesh(cost: pd.DataFrame, velocity, members=None) -> dict:
 
 
 def unstated_rows(cells: pd.DataFrame, baselines: dict, settings: dict, paper: dict) -> pd.DataFrame:
-    """Per target, contrast and velocity: each scene's contrast (realisations' mean +- 2 s.e.) and its change from the
+    """Per target, contrast and velocity: each scene's contrast (realisations' mean +- 2 s.e.; realisations: the members
+    whose two shots both came to rest, of runs: the members run) and its change from the
     target's baseline scene (resolved beyond Student's t at 95 % on the two cells' realisations less two, times the
     change's standard error), the setting it changes and whether the paper's value lies within 2 s.e. of it.
     ``baselines``: target -> its baseline scene; ``settings``: scene -> (target, input, setting)."""
@@ -250,7 +251,8 @@ def unstated_rows(cells: pd.DataFrame, baselines: dict, settings: dict, paper: d
             rows.append({"target": target, "scene": scene, "baseline": scene == baselines[target], "input": name,
                          "setting": setting,
                          "profile": r.profile, "element_size_m": r.element_size_m, "contrast": r.quantity,
-                         "velocity_ms": r.velocity_ms, "realisations": r.realisations, "ratio": r["mean"],
+                         "velocity_ms": r.velocity_ms, "realisations": r.realisations, "runs": r.runs,
+                         "ratio": r["mean"],
                          "ratio_se": r.se, "sd": r.sd, "change_points": 100 * change, "change_se_points": 100 * change_se,
                          "change_resolved": bool(abs(change) > k * change_se) if change_se > 0 else False,
                          "change_t_factor": k if change_se > 0 else math.nan,
