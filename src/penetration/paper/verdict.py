@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pandas as pd
 
 from ..studies.fe_results import CONTRASTS
@@ -92,12 +93,13 @@ def _cavity_variants(sensitivity: pd.DataFrame, contrast, v):
 
 
 def _unstated_changes(unstated: pd.DataFrame | None, target, contrast, v, base_value):
-    """label -> base_value + the change that scene's unstated setting makes to the contrast (realisations' means)."""
+    """label -> base_value + the change that scene's unstated setting makes to the contrast (realisations' means);
+    a setting whose shots did not come to rest (no contrast) is left out."""
     if unstated is None:
         return {}
     u = unstated[(unstated.target == target) & (unstated.contrast == contrast) & (unstated.velocity_ms == v)]
     return {f"{r['input']} {r['setting']:g}": base_value + r.change_points / 100 for _, r in u.iterrows()
-            if str(r.baseline) != "True" and r["input"] in UNSTATED}
+            if str(r.baseline) != "True" and r["input"] in UNSTATED and np.isfinite(r.change_points)}
 
 
 def _control_changes(unstated: pd.DataFrame | None, target, contrast, v):
