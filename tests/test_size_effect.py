@@ -64,7 +64,7 @@ def test_the_analytic_level_is_eq9_with_the_scaled_s():
 
 def test_the_simulation_levels_carry_the_rate_mechanism_in_their_material():
     """The cavity and fe levels take MC2010's factor at each point's rate (the material's rate law), the cavity level
-    the fracture factor on its strength scale; the fe level refuses fracture (no crack band yet)."""
+    the fracture factor on its strength scale."""
     from penetration.shots.ladder import cavity_material, fe_material
     shot = similar_shot(0.05)
     e = SizeEffect(mechanisms=("rate", "fracture"), beyond="cap", aggregate=0.01)
@@ -75,8 +75,22 @@ def test_the_simulation_levels_carry_the_rate_mechanism_in_their_material():
     assert plain.rate_law == "hjc"
     assert m.strength_scale == pytest.approx(plain.strength_scale * float(scale.size_effect_factor(0.05, 0.25)))
     assert fe_material(shot, Context(size=SizeEffect(mechanisms=("rate",)))).rate_law == "mc2010_extrapolate"
-    with pytest.raises(ParameterError, match="mechanisms"):
-        fe_material(shot, ctx)
+
+
+def test_the_crack_band_dissipates_the_fracture_energy_whatever_the_element_size():
+    """Linear softening from f_t to zero at the crack band's strain over a band of one element: h f_t eps / 2 = G_F
+    for every h (Bazant & Oh 1983); only the fracture mechanism changes EFMIN."""
+    from penetration.concrete.hjc import HJC
+    from penetration.concrete.size import crack_band_strain, regularised
+    m = HJC()
+    for h in (0.001, 0.00875, 0.05):
+        eps = crack_band_strain(m, h)
+        assert h * m.T * eps / 2 == pytest.approx(float(scale.fracture_energy_mc2010(m.fc)), rel=1e-12)
+    assert regularised(m, SizeEffect(mechanisms=("fracture",)), 0.00875).efmin == crack_band_strain(m, 0.00875)
+    assert regularised(m, SizeEffect(mechanisms=("rate",)), 0.00875) is m
+    assert regularised(m, None, 0.00875) is m
+    with pytest.raises(ParameterError, match="element_size"):
+        crack_band_strain(m, 0.0)
 
 
 @pytest.mark.parametrize("fields, name", [({"mechanisms": ("size",)}, "mechanisms"), ({"mechanisms": ()}, "mechanisms"),
@@ -102,3 +116,15 @@ def test_split_summary_reads_each_series_fit_and_pools_the_held_out_errors():
     assert row.value_a == 0.5 and row.value_b == 1.0 and row.split_ratio == 2.0
     assert row.loso_shots == 4 and row.loso_median_abs_rel_err == pytest.approx(0.15)
     assert row.mean_rel_err_a == pytest.approx(-0.1) and row.do1_pred_m == 4.0
+
+
+def test_the_fe_level_applies_the_crack_band_at_its_scaled_element_size():
+    from penetration.concrete.size import crack_band_strain
+    from penetration.shots.ladder import fe_material, fe_spec
+    shot = UserShot(Ogive(3.0, 0.0269 / 2), 0.9, 600.0, FC, RHO, length=0.2424)
+    ctx = Context(size=SizeEffect(mechanisms=("fracture",)), failure_strain=1.6)
+    spec, k = fe_spec(shot, ctx)
+    assert k == pytest.approx(0.0269 / 2 / 0.07)
+    assert spec.material.efmin == crack_band_strain(fe_material(shot, ctx), spec.settings.element_size)
+    plain, _ = fe_spec(shot, Context(failure_strain=1.6))
+    assert plain.material.efmin == fe_material(shot, ctx).efmin

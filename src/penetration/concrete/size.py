@@ -11,20 +11,26 @@ constants from published relations (``concrete.scale``); none is fitted on a pen
   code's cube-root branch continued, which holds the specimen's inertia as well as the material's rate effect).
 - ``fracture``: Bazant's size-effect law (type 2) on the resistance, sigma_N ~ (1 + d/D0)^(-1/2), with the
   transitional size D0 = lambda0 d_a (Bazant 1984): d_a the largest aggregate, lambda0 = 25 Bazant & Kim's value for
-  the diagonal shear of beams (1984), a published geometry's, not a penetration's (none is published).
+  the diagonal shear of beams (1984), a published geometry's, not a penetration's (none is published). At the FE
+  level, where the element size is a length, a crack band instead (Bazant & Oh 1983): HJC's smallest fracture
+  strain EFMIN becomes the strain 2 G_F / (f_t h) at which a band one element wide dissipates the fracture energy
+  G_F (MC2010) under linear softening from the tensile strength f_t (the material's T), so that the energy a crack
+  takes no longer falls with the element size.
 
-The analytic and cavity levels take both as a factor on the static resistance (``resistance_factor``); the
-cavity level and the FE level take ``rate`` in the material instead (the strength surface times the factor at each
-point's rate) when their material carries it.
+The analytic level takes both as a factor on the static resistance (``resistance_factor``); the cavity level takes
+``rate`` in the material (the strength surface times the factor at each point's rate) and ``fracture`` as the
+factor; the FE level ``rate`` in the material and ``fracture`` as the crack band (``regularised``).
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import ParameterError
 from . import scale
+from .hjc import HJC
 
 SIZE_MECHANISMS = {}
 
@@ -96,3 +102,19 @@ def resistance_factor(effect: SizeEffect | None, diameter, velocity, mechanisms=
             raise ParameterError("size", "mechanisms", name, f"one of the effect's {list(effect.mechanisms)}")
         out = out * SIZE_MECHANISMS[name](effect, diameter, velocity)
     return out
+
+
+def crack_band_strain(material: HJC, element_size: float) -> float:
+    """The strain at which a crack band of width ``element_size`` (m) has dissipated the fracture energy under linear
+    softening from the tensile strength: 2 G_F / (f_t h), G_F = MC2010's at the material's fc, f_t its T."""
+    if not (element_size > 0):
+        raise ParameterError("size", "element_size", element_size, "> 0 (m)")
+    return float(2.0 * scale.fracture_energy_mc2010(material.fc) / (material.T * element_size))
+
+
+def regularised(material: HJC, effect: SizeEffect | None, element_size: float) -> HJC:
+    """The FE level's material with the scale effect's crack band (EFMIN = crack_band_strain) where the effect has
+    the fracture mechanism; unchanged otherwise."""
+    if effect is None or "fracture" not in effect.mechanisms:
+        return material
+    return dataclasses.replace(material, efmin=crack_band_strain(material, element_size))

@@ -39,7 +39,7 @@ from ..cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
 from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
-from ..concrete.size import SizeEffect, material_rate_law, resistance_factor
+from ..concrete.size import SizeEffect, material_rate_law, regularised, resistance_factor
 from ..errors import ParameterError
 from ..levels import LEVELS
 from ..nose.geometry import NOSES, Flat, Ogive, make_nose
@@ -224,11 +224,7 @@ def _with_rate_law(material: HJC, ctx: Context) -> HJC:
 def fe_material(shot: UserShot, ctx: Context) -> HJC:
     """The fe level's concrete of a shot: the base set scaled to its fc and density (its calibration, the failure
     strain, belongs to the run settings); with the scale effect's rate mechanism, MC2010's rate factor at each
-    element's rate in place of HJC's. The fracture mechanism needs the element size (a crack band), which the fe level
-    does not carry yet."""
-    if ctx.size is not None and "fracture" in ctx.size.mechanisms:
-        raise ParameterError("size", "mechanisms", list(ctx.size.mechanisms), "at the fe level: rate only (its "
-                             "fracture mechanism is a crack band on the element size, not carried yet)")
+    element's rate in place of HJC's (its fracture mechanism, a crack band, needs the element size: fe_spec)."""
     return _with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density), ctx)
 
 
@@ -272,12 +268,14 @@ def fe_settings_for(shot: UserShot, ctx: Context):
 
 def fe_spec(shot: UserShot, ctx: Context):
     """The fe level's run spec of a user's shot, built once: the calibration mesh and settings scaled to the shot's
-    radius (fe_settings_for), the shot's concrete (fe_material), a semi-infinite target of the context's radius
+    radius (fe_settings_for), the shot's concrete (fe_material; with the scale effect's crack band at the mesh's
+    element size), a semi-infinite target of the context's radius
     scaled likewise, and the domain's depth from the closed form (shots.expected_depth). Returns (spec, scale)."""
     from ..fe.level import run_spec
     from ..fe.shot import TargetSpec
     settings, k = fe_settings_for(shot, ctx)
-    return run_spec(shot.nose, shot.mass, shot.velocity, fe_material(shot, ctx), settings,
+    material = regularised(fe_material(shot, ctx), ctx.size, settings.element_size)
+    return run_spec(shot.nose, shot.mass, shot.velocity, material, settings,
                     TargetSpec("semi_infinite", ctx.fe_target_radius * k),
                     expected_depth(shot.nose, shot.mass, shot.velocity, shot.fc, shot.density)), k
 
