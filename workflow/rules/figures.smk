@@ -344,3 +344,17 @@ rule scale_similarity:
     benchmark: "results/benchmarks/scale_similarity.tsv"
     log: "results/logs/scale_similarity.log",
     script: "../scripts/run_task.py"
+
+
+# Table 3 (all at 140 mm) at each level with the scale effect's variants (a study): the contrasts and their changes.
+rule scale_table3:
+    input: **task("tasks.scale"), **GEOMETRY_RESULTS, **scene_input("workflow/scenes/table3_stated.yaml"),
+           schema=SCENE_SCHEMA, reference=config["reference"],
+           calibrations=[f"figures/scale/calibration_{level}.csv" for level in config["scale_effect"]["similarity"]["levels"]],
+    output: csv="figures/scale/table3.csv",
+    params: cfg=cfg_slice("concrete", "cavity", "validation", "scale_effect"),
+    threads: 1
+    resources: mem_mb=2000, runtime=30
+    benchmark: "results/benchmarks/scale_table3.tsv"
+    log: "results/logs/scale_table3.log",
+    script: "../scripts/run_task.py"

@@ -15,8 +15,9 @@ from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
 from ..shots.records import context_from_files
 from ..studies.laboratory import Protocol
+from ..studies.fe_results import CONTRASTS
 from ..studies.scale import split_summary
-from .common import do1_shot
+from .common import PLAIN, do1_shot, scene_from_inputs
 from .laboratory import FITTED, calibrate_on_laboratory
 
 
@@ -124,3 +125,35 @@ def scale_similarity(inputs, outputs, params):
     table = pd.DataFrame(rows)
     write_csv(table, outputs.csv)
     similarity_figure(table, spec, outputs.png, params.dpi)
+
+
+@task
+def scale_table3(inputs, outputs, params):
+    """Table 3 (its three noses at its four velocities, all at 140 mm) at each level with each variant's factor
+    calibrated on the laboratory shots: the depths and the nose contrasts, and each contrast's change from the
+    variant without the effect (points): all shots share one calibre, so the effect can move a contrast only
+    through the depths' nonlinearity in the resistance and through the velocity in the rate factor."""
+    cfg = params.cfg
+    study = cfg["scale_effect"]
+    sc = scene_from_inputs(inputs, PLAIN)
+    calibrations = pd.concat([pd.read_csv(p) for p in inputs.calibrations])
+    rows = []
+    for level in sorted(set(calibrations.level)):
+        for name in study["similarity"]["levels"].get(level, []):
+            cal = calibrations[(calibrations.level == level) & (calibrations.variant == name)
+                               & (calibrations.fold == "all")]
+            ctx = context_from_files(cfg, inputs.reference)
+            ctx.size = size_effect(study["variants"][name])
+            setattr(ctx, FITTED[level][0], float(cal.value.iloc[0]))
+            for v in sc.velocities:
+                depth = {n: run(UserShot(nose, sc.mass, float(v), sc.target.fc, sc.target.rho, label=n), level,
+                                ctx).depth_m for n, nose in sc.noses.items()}
+                for contrast, (num, den) in CONTRASTS.items():
+                    rows.append({"level": level, **variant_columns(name, ctx.size), "velocity_ms": float(v),
+                                 "contrast": contrast, "ratio": depth[num] / depth[den],
+                                 f"depth_{num}_m": depth[num], f"depth_{den}_m": depth[den]})
+    table = pd.DataFrame(rows)
+    base = table[table.variant == "none"].set_index(["level", "velocity_ms", "contrast"]).ratio
+    key = pd.MultiIndex.from_frame(table[["level", "velocity_ms", "contrast"]])
+    table["change_points"] = 100 * (table.ratio.to_numpy() - base.reindex(key).to_numpy())
+    write_csv(table, outputs.csv)
