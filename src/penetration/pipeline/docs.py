@@ -21,6 +21,7 @@ from pathlib import Path
 
 from ..studies.stats import power_law_exponent
 from .docs_scale import BLOCKS as SCALE_BLOCKS
+from .docs_unstated import BLOCKS as UNSTATED_BLOCKS
 
 BLOCK = re.compile(r"(<!-- generated: (?P<name>[a-z0-9_]+) -->\n)(?P<body>.*?)(<!-- end generated -->)", re.S)
 
@@ -782,7 +783,7 @@ def studies(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"verdict": verdict, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS}
+BLOCKS = {"verdict": verdict, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
 
 
 def render(text: str, read) -> str:

@@ -1,0 +1,68 @@
+"""The generated block of the unstated inputs (docs/findings.md): from figures/fe/unstated_{target}_v{v}.csv."""
+from __future__ import annotations
+
+import csv
+import io
+import math
+
+TARGETS = {"eroding": "eroding target (failure strain calibrated on DO1 without friction, full mesh)",
+           "erosion_free": "erosion-free target (8.192 elements across)"}
+
+
+def _rows(read, path):
+    try:
+        return list(csv.DictReader(io.StringIO(read(path))))
+    except FileNotFoundError:
+        return []
+
+
+def _num(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def unstated_inputs(read) -> str:
+    """Per target, velocity and contrast: the baseline's mean ± s.e. and each unstated setting's change in points
+    (± its s.e., marked where Student's t resolves it), with the members that came to rest; the paper's value."""
+    import yaml
+
+    cfg = yaml.safe_load(read("workflow/config.yaml"))["fe_realisations"]
+    lines, missing = [], []
+    for target in cfg["unstated"]:
+        for v in cfg["velocities"]:
+            rows = _rows(read, f"figures/fe/unstated_{target}_v{v:g}.csv")
+            if not rows:
+                missing.append(f"{target} at {v:g} m/s")
+                continue
+            settings = [(r["input"], r["setting"]) for r in rows if r["baseline"] != "True"]
+            settings = list(dict.fromkeys(settings))
+            lines.append(f"\n{TARGETS.get(target, target)}, {v:g} m/s:\n")
+            lines.append("| contrast | paper | baseline | " + " | ".join(f"{i} {s}" for i, s in settings) + " |")
+            lines.append("|---|---|---|" + "---|" * len(settings))
+            for contrast in dict.fromkeys(r["contrast"] for r in rows):
+                mine = [r for r in rows if r["contrast"] == contrast]
+                base = next(r for r in mine if r["baseline"] == "True")
+                cells = []
+                for name, setting in settings:
+                    r = next((x for x in mine if (x["input"], x["setting"]) == (name, setting)), None)
+                    if r is None or not (math.isfinite(_num(r["change_points"]))
+                                         and math.isfinite(_num(r["change_se_points"]))):
+                        rest = f"{r['realisations']} of {r['runs']} at rest" if r is not None else "not run"
+                        cells.append(f"— ({rest})")
+                        continue
+                    mark = "**" if r["change_resolved"] == "True" else ""
+                    cells.append(f"{mark}{_num(r['change_points']):+.1f} ± {_num(r['change_se_points']):.1f}{mark}")
+                lines.append(f"| {contrast} | {_num(base['paper_sim_ratio']):.3f} | {_num(base['ratio']):.3f} ± "
+                             f"{_num(base['ratio_se']):.3f} | " + " | ".join(cells) + " |")
+    tail = ("\nChanges in points of the contrast from the baseline (the means of the realisations, ± the standard error "
+            "of the difference); bold where the change exceeds Student's t at 95 % times its standard error; '— (n of m "
+            "at rest)': too few of the setting's members came to rest within the run to give a contrast with its "
+            "standard error.")
+    if missing:
+        tail += " Not yet run: " + ", ".join(missing) + "."
+    return "\n".join(lines).lstrip("\n") + "\n" + tail + "\n"
+
+
+BLOCKS = {"unstated_inputs": unstated_inputs}
