@@ -316,19 +316,66 @@ rule sweep:
 
 
 # The scale effect at one level (a study): its one factor calibrated on the laboratory shots with each variant of
-# config scale_effect (concrete/size.py) and without it, scored by leaving each series out, and DO1 predicted.
+# config scale_effect (concrete/size.py) and without it, scored by leaving each series out, and DO1 predicted. The fe
+# level at scale_effect.fe_profile reads its grids in committed pieces (the variant none: the laboratory
+# calibration's own grid).
+SCALE = config["scale_effect"]
+SCALE_FE_PROFILE = SCALE["fe_profile"]
+SCALE_PIECE = "figures/scale/fe_{profile}/{variant}/fs_{value}.csv"
+
+
+def scale_fe_pieces(variant):
+    """The committed grid pieces of the fe level's calibration with one variant."""
+    if variant == "none":
+        return [f"figures/fe/{SCALE_FE_PROFILE}/laboratory_grid/fs_{v}.csv" for v in FE_LAB_GRID]
+    return [SCALE_PIECE.format(profile=SCALE_FE_PROFILE, variant=variant, value=v) for v in FE_LAB_GRID]
+
+
+SCALE_FE_GRID = {name: scale_fe_pieces(name) for name in SCALE["levels"].get("fe", [])}
+SCALE_FE_VALUES = "|".join(v.replace(".", r"\.") for v in FE_LAB_GRID)
+SCALE_VARIANTS = "|".join(n for n in SCALE["variants"] if n != "none")
+
+
+def scale_fe_missing(w):
+    """The fe level's grid pieces not on disk yet (built first); none at the other levels."""
+    return uncommitted([p for ps in SCALE_FE_GRID.values() for p in ps])(w) if w.level == "fe" else []
+
+
+def scale_cfg(w):
+    """The config sections the study reads at a level (the fe level's mesh profile too)."""
+    extra = {"fe": fe_cfg(SCALE_FE_PROFILE)} if w.level == "fe" else {}
+    return cfg_slice("concrete", "cavity", "validation", "scale_effect", **extra)
+
+
 rule scale_validation:
     input: **task("tasks.scale"), shots=config["validation"]["shots"], reference=config["reference"],
-           do1="results/geometry/double_ogive_table4.json",
+           do1="results/geometry/double_ogive_table4.json", fe_grid=scale_fe_missing,
     output: csv="figures/scale/calibration_{level}.csv", predictions="figures/scale/predictions_{level}.csv",
             summary="figures/scale/validation_{level}.csv", do1="figures/scale/do1_{level}.csv",
-    params: cfg=cfg_slice("concrete", "cavity", "validation", "scale_effect"), shots_path=config["validation"]["shots"],
-            shot=config["calibration"]["do1"], level=lambda w: w.level,
-    wildcard_constraints: level="analytic|cavity"
-    threads: 1
+    params: cfg=scale_cfg, shots_path=config["validation"]["shots"], shot=config["calibration"]["do1"],
+            level=lambda w: w.level, fe_grid=lambda w: SCALE_FE_GRID if w.level == "fe" else {},
+    wildcard_constraints: level="analytic|cavity|fe"
+    threads: 2
     resources: mem_mb=2000, runtime=120
     benchmark: "results/benchmarks/scale_validation_{level}.tsv"
     log: "results/logs/scale_validation_{level}.log",
+    script: "../scripts/run_task.py"
+
+
+SCALE_PIECE_INPUTS = record_inputs("tasks.scale", SCALE_PIECE,
+                                   data=lambda w: [config["validation"]["shots"], config["reference"]])
+
+
+rule scale_fe_grid_value:
+    input: **SCALE_PIECE_INPUTS,
+    output: csv=SCALE_PIECE,
+    params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", "scale_effect", fe=fe_cfg(w.profile)),
+            profile=lambda w: w.profile, value=lambda w: float(w.value), variant=lambda w: w.variant,
+    wildcard_constraints: profile="full|ci", value=SCALE_FE_VALUES, variant=SCALE_VARIANTS,
+    threads: 2
+    resources: mem_mb=2000, runtime=60
+    benchmark: "results/benchmarks/scale_fe_grid_value_{profile}_{variant}_{value}.tsv"
+    log: "results/logs/scale_fe_grid_value_{profile}_{variant}_{value}.log",
     script: "../scripts/run_task.py"
 
 

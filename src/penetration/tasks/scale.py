@@ -12,13 +12,13 @@ from ..figures.scale import similarity_figure
 from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.io import read_inference, read_rows, task, write_csv
-from ..shots.ladder import UserShot, run
+from ..shots.ladder import UserShot, run, user_shot
 from ..shots.records import context_from_files
 from ..studies.laboratory import Protocol
 from ..studies.fe_results import CONTRASTS
 from ..studies.scale import split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
-from .laboratory import FITTED, calibrate_on_laboratory
+from .laboratory import FITTED, _runs as grid_value_runs, calibrate_on_laboratory, grid_runs_from
 
 
 def size_effect(spec) -> SizeEffect | None:
@@ -49,6 +49,7 @@ def scale_validation(inputs, outputs, params):
     lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
     grid = study["s_scales"] if level == "analytic" else lab[{"cavity": "strength_scales",
                                                               "fe": "failure_strains"}[level]]
+    profile = study.get("fe_profile", "full")
     protocol = Protocol.from_config(lab, grid)
     _, rows = read_rows(inputs.shots)
     refs = reference.load_reference(inputs.reference)
@@ -57,17 +58,20 @@ def scale_validation(inputs, outputs, params):
     fits, predictions, do1 = [], [], []
     for name in study["levels"][level]:
         effect = size_effect(study["variants"][name])
-        ctx = context_from_files(cfg, inputs.reference)
+        ctx = context_from_files(cfg, inputs.reference, profile=profile)
         ctx.size = effect
         print(f"{level}, variant {name}: calibrating on {len(rows)} laboratory shots", flush=True)
+        pieces = (params.fe_grid or {}).get(name)
+        grid_runs = (lambda rs, paths=pieces: grid_runs_from(paths, rs, grid)) if level == "fe" else None
         f, p, _, timing = calibrate_on_laboratory(level, ctx, rows, protocol, params.shots_path,
-                                                  lambda m: print("  " + m, flush=True))
+                                                  lambda m: print("  " + m, flush=True), grid_runs)
         cols = variant_columns(name, effect)
         fits.append(f.assign(**cols, grid_wall_time_s=float(timing.wall_time_s.iloc[0])))
         predictions.append(p.assign(level=level, **cols))
         value = float(f.loc[f.fold == "all", "value"].iloc[0])
         setattr(ctx, FITTED[level][0], value)
-        shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1")
+        shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1",
+                        length=refs["table2.length"].si if level == "fe" else None)
         r = run(shot, level, ctx)
         do1.append({"level": level, **cols, "calibration": "laboratory (fold all)", "parameter": FITTED[level][1],
                     "value": value, "dop_pred_m": r.depth_m, "dop_m": depth, "rel_error": r.depth_m / depth - 1,
@@ -157,3 +161,19 @@ def scale_table3(inputs, outputs, params):
     key = pd.MultiIndex.from_frame(table[["level", "velocity_ms", "contrast"]])
     table["change_points"] = 100 * (table.ratio.to_numpy() - base.reindex(key).to_numpy())
     write_csv(table, outputs.csv)
+
+
+@task
+def scale_fe_grid_value(inputs, outputs, params):
+    """Every laboratory shot at the fe level of a mesh profile with one failure strain of the grid and one variant
+    of the scale effect (a piece, committed, as the laboratory calibration's own grid: fe_laboratory_grid_value)."""
+    if not inputs.data:
+        raise ValueError(f"{outputs.csv} is a committed piece of the grid: delete it to recompute it")
+    shots_path, reference_path = inputs.data
+    _, rows = read_rows(shots_path)
+    ctx = context_from_files(params.cfg, reference_path, profile=params.profile)
+    ctx.size = size_effect(params.cfg["scale_effect"]["variants"][params.variant])
+    runs = grid_value_runs([user_shot(r) for r in rows], ctx, float(params.value), lambda m: print(m, flush=True))
+    write_csv(pd.DataFrame([{"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m,
+                             "status": res.status, "wall_time_s": res.wall_time_s} for r, res in zip(rows, runs)]),
+              outputs.csv)
