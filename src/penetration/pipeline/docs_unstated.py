@@ -66,3 +66,31 @@ def unstated_inputs(read) -> str:
 
 
 BLOCKS = {"unstated_inputs": unstated_inputs}
+
+
+def table3_window(read) -> str:
+    """The moving window against the whole domain on the eroding target at Table 3's fastest shots (study
+    fe_table3_window): each shot's difference of the mean depths with its interval and verdict."""
+    import yaml
+
+    parts, missing = [], []
+    for shot in yaml.safe_load(read("workflow/config.yaml"))["fe_realisations"]["window"]["shots"]:
+        rows = _rows(read, f"figures/fe/full/window_table3_{shot}_summary.csv")
+        if not rows:
+            missing.append(shot)
+            continue
+        r = rows[0]
+        nose, v = shot.rsplit("_", 1)
+        parts.append(f"{nose} at {v} m/s {_num(r['difference_pct']):+.2f} % ({100 * _num(r['confidence']):.0f} % "
+                     f"interval {_num(r['interval_low_pct']):+.2f} to {_num(r['interval_high_pct']):+.2f} %, "
+                     f"{'within' if r['within_goal'] == 'True' else 'not within'} +-{_num(r['goal_pct']):g} %; "
+                     f"{r['realisations']} realisations each)")
+    text = ("On the eroding target at Table 3's fastest shots (study `fe_table3_window`, "
+            "`figures/fe/full/window_table3_*_summary.csv`), the window against the whole domain: "
+            + ("; ".join(parts) if parts else "none run yet") + ".")
+    if missing:
+        text += " Not yet run: " + ", ".join(missing) + "."
+    return text + "\n"
+
+
+BLOCKS["table3_window"] = table3_window
