@@ -3,8 +3,9 @@
 Every constant here is a published one; nothing is fitted on a penetration shot.
 
 - Strain rate: the dynamic increase factor (DIF) of the compressive and tensile strengths, fib Model Code 2010
-  and CEB-FIP Model Code 1990 (the relations of CEB Bulletin 187, 1988, as restated by Malvar & Crawford 1998). Both codes state them up to 300 1/s; a penetration loads the concrete at
-  1e3-1e5 1/s, so a caller names what happens beyond (``beyond``): ``cap`` holds the value at 300 1/s,
+  and CEB-FIP Model Code 1990 (the relations of CEB Bulletin 187, 1988, as restated by Malvar & Crawford 1998).
+  Both codes state them up to 300 1/s; a penetration loads the concrete at 1e3-1e5 1/s, so a caller names what
+  happens beyond (``beyond``): ``cap`` holds the value at 300 1/s,
   ``extrapolate`` continues the code's cube-root branch. Both codes say that the steep branch holds lateral
   inertia of the test specimen as well as the material's rate dependence: a level that resolves inertia itself
   counts part of it twice, which the studies show by running both conventions.
@@ -70,8 +71,9 @@ def _two_branch(r, r0, knee, low_exponent, high_coefficient):
     return out if r.ndim else float(out)
 
 
-# fib MC2010's compressive factor: reference rate, knee, low exponent, high coefficient
+# fib MC2010's compressive and tensile factors: reference rate, knee, low exponent, high coefficient
 MC2010_COMPRESSION = (30e-6, 30.0, 0.014, 0.012)
+MC2010_TENSION = (1e-6, 10.0, 0.018, 0.0062)
 
 
 @njit(cache=True, inline="always")
@@ -90,7 +92,7 @@ def dif_compression_mc2010(rate, beyond="cap"):
 def dif_tension_mc2010(rate, beyond="cap"):
     """f_ct,imp / f_ctm: (rate/1e-6)^0.018 up to 10 1/s, 0.0062 (rate/1e-6)^(1/3) above (fib MC2010,
     strain-rate effects in tension)."""
-    return _two_branch(_rates(rate, beyond, "dif_tension_mc2010"), 1e-6, 10.0, 0.018, 0.0062)
+    return _two_branch(_rates(rate, beyond, "dif_tension_mc2010"), *MC2010_TENSION)
 
 
 def dif_compression_ceb1990(rate, fcm, beyond="cap"):
@@ -137,8 +139,8 @@ def elastic_modulus_mc2010(fcm, aggregate="quartzite"):
 
 
 def characteristic_length(E, GF, ft):
-    """Hillerborg's characteristic length l_ch = E G_F / f_t^2 (m): the length of the fracture process zone's
-    scale, 0.2-0.5 m for normal concrete (Hillerborg, Modeer & Petersson 1976)."""
+    """Hillerborg's characteristic length l_ch = E G_F / f_t^2 (m): the scale of the fracture process zone's
+    length (Hillerborg, Modeer & Petersson 1976)."""
     return (_positive(E, "characteristic_length", "E", "Pa") * _positive(GF, "characteristic_length", "GF", "N/m")
             / _positive(ft, "characteristic_length", "ft", "Pa") ** 2)
 

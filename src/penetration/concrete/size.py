@@ -93,11 +93,10 @@ def material_rate_law(effect: SizeEffect | None) -> str:
 def resistance_factor(effect: SizeEffect | None, diameter, velocity, mechanisms=None):
     """The factor on the static resistance of a shot of calibre ``diameter`` (m) struck at ``velocity`` (m/s): the
     product over the effect's mechanisms (or over ``mechanisms``, a subset of them); 1 without the effect."""
-    if effect is None:
-        return np.ones_like(np.asarray(velocity, float) * np.asarray(diameter, float))
-    names = effect.mechanisms if mechanisms is None else tuple(mechanisms)
     out = np.ones_like(np.asarray(velocity, float) * np.asarray(diameter, float))
-    for name in names:
+    if effect is None:
+        return out
+    for name in effect.mechanisms if mechanisms is None else tuple(mechanisms):
         if name not in effect.mechanisms:
             raise ParameterError("size", "mechanisms", name, f"one of the effect's {list(effect.mechanisms)}")
         out = out * SIZE_MECHANISMS[name](effect, diameter, velocity)

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import argparse
 import collections
-import csv
-import io
 import json
 import re
 import statistics
@@ -20,14 +18,11 @@ import sys
 from pathlib import Path
 
 from ..studies.stats import power_law_exponent
+from .docs_read import number as _num, rows as _rows, rows_if_any as _rows_if_any
 from .docs_scale import BLOCKS as SCALE_BLOCKS
 from .docs_unstated import BLOCKS as UNSTATED_BLOCKS
 
 BLOCK = re.compile(r"(<!-- generated: (?P<name>[a-z0-9_]+) -->\n)(?P<body>.*?)(<!-- end generated -->)", re.S)
-
-
-def _rows(read, path):
-    return list(csv.DictReader(io.StringIO(read(path))))
 
 
 def _pct(x) -> str:
@@ -84,14 +79,6 @@ def levels(read) -> str:
               "`figures/fe/full/validation_levels_summary.csv` (fe at the default mesh). A positive mean is too deep; "
               "a negative slope means the level goes too deep in weak concrete and too shallow in strong."]
     return "\n".join(lines) + "\n"
-
-
-def _rows_if_any(read, path):
-    """The rows of an output that a study may not have built yet (none then)."""
-    try:
-        return _rows(read, path)
-    except FileNotFoundError:
-        return []
 
 
 # the laboratory validation's goal for the 90th percentile of |error| out of sample (its median's goal is the
@@ -674,11 +661,6 @@ def paper_eq9(read) -> str:
               f"{float(r['S_effective']):.3f} | {float(r['S_effective_over_crh3']):.3f} | "
               f"{100 * float(r['rms_ln_residual']):.2f} % |" for r in rows]
     return "\n".join(lines) + "\n"
-
-
-def _num(text) -> float:
-    """A CSV cell as a float (an empty cell: nan)."""
-    return float(text) if text not in ("", None) else float("nan")
 
 
 def verdict(read) -> str:

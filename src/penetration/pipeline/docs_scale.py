@@ -1,20 +1,12 @@
 """The generated blocks of the scale effect (docs/scale-effect.md, the README): from figures/scale/*.csv."""
 from __future__ import annotations
 
-import csv
-import io
+from .docs_read import rows_if_any
 
 # the targets the validation is read against: a physics level's leave-one-series-out errors, the two series' fitted
 # factors, DO1 without a DO1 calibration
 GOALS = {"loso_median": 0.07, "loso_p90": 0.20, "split_ratio": 1.20, "do1": 0.10}
 LEVEL_FACTOR = {"analytic": "S factor", "cavity": "strength scale", "fe": "failure strain"}
-
-
-def _rows(read, path):
-    try:
-        return list(csv.DictReader(io.StringIO(read(path))))
-    except FileNotFoundError:
-        return []
 
 
 def _f(x, fmt):
@@ -35,7 +27,7 @@ def scale_effect(read) -> str:
              "|---|---|---|---|---|---|---|---|---|"]
     missing = []
     for level in levels:
-        rows = _rows(read, f"figures/scale/validation_{level}.csv")
+        rows = rows_if_any(read, f"figures/scale/validation_{level}.csv")
         if not rows:
             missing.append(level)
             continue

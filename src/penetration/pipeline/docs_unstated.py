@@ -1,26 +1,12 @@
 """The generated block of the unstated inputs (docs/findings.md): from figures/fe/unstated_{target}_v{v}.csv."""
 from __future__ import annotations
 
-import csv
-import io
 import math
+
+from .docs_read import number as _num, rows_if_any as _rows
 
 TARGETS = {"eroding": "eroding target (failure strain calibrated on DO1 without friction, full mesh)",
            "erosion_free": "erosion-free target (8.192 elements across)"}
-
-
-def _rows(read, path):
-    try:
-        return list(csv.DictReader(io.StringIO(read(path))))
-    except FileNotFoundError:
-        return []
-
-
-def _num(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return math.nan
 
 
 def unstated_inputs(read) -> str:

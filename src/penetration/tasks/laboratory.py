@@ -129,11 +129,18 @@ def fe_laboratory_grid_value(inputs, outputs, params):
     """Every laboratory shot at the fe level of a mesh profile with one failure strain of the calibration's grid
     (a piece of the calibration: committed, so that the grid, hours at the default mesh, runs over sessions).
     A committed piece is a record: the rule gives it no data and it is not rebuilt (delete it to recompute it)."""
+    write_grid_piece(inputs, outputs, params)
+
+
+def write_grid_piece(inputs, outputs, params, size=None):
+    """A piece of an fe grid (fe_laboratory_grid_value's, or the scale effect's with its ``size``): every laboratory
+    shot at the failure strain ``params.value`` on the mesh of ``params.profile``, written to ``outputs.csv``."""
     if not inputs.data:
         raise ValueError(f"{outputs.csv} is a committed piece of the grid: delete it to recompute it")
     shots_path, reference_path = inputs.data
     _, rows = read_rows(shots_path)
     ctx = context_from_files(params.cfg, reference_path, profile=params.profile)
+    ctx.size = size
     runs = _runs([user_shot(r) for r in rows], ctx, "fe", float(params.value), lambda m: print(m, flush=True))
     write_csv(pd.DataFrame([{"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m,
                              "status": res.status, "wall_time_s": res.wall_time_s} for r, res in zip(rows, runs)]),

@@ -12,13 +12,13 @@ from ..figures.scale import similarity_figure
 from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.io import read_inference, read_rows, task, write_csv
-from ..shots.ladder import UserShot, run, user_shot
+from ..shots.ladder import UserShot, run
 from ..shots.records import context_from_files
 from ..studies.laboratory import Protocol
 from ..studies.fe_results import CONTRASTS
 from ..studies.scale import split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
-from .laboratory import FITTED, _runs as grid_value_runs, calibrate_on_laboratory, grid_runs_from
+from .laboratory import FITTED, calibrate_on_laboratory, grid_runs_from, write_grid_piece
 
 
 def size_effect(spec) -> SizeEffect | None:
@@ -49,7 +49,7 @@ def scale_validation(inputs, outputs, params):
     lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
     grid = study["s_scales"] if level == "analytic" else lab[{"cavity": "strength_scales",
                                                               "fe": "failure_strains"}[level]]
-    profile = study.get("fe_profile", "full")
+    profile = study["fe_profile"]
     protocol = Protocol.from_config(lab, grid)
     _, rows = read_rows(inputs.shots)
     refs = reference.load_reference(inputs.reference)
@@ -84,6 +84,20 @@ def scale_validation(inputs, outputs, params):
     write_csv(do1, outputs.do1)
 
 
+def calibrated_context(cfg, reference_path, calibrations, level, name, where):
+    """The levels' context with variant ``name`` of the scale effect and ``level``'s factor as scale_validation
+    fitted it on all laboratory shots (``calibrations``: its calibration tables); ``where`` names the config entry
+    that asks for it in the error when there is none."""
+    cal = calibrations[(calibrations.level == level) & (calibrations.variant == name) & (calibrations.fold == "all")]
+    if len(cal) != 1:
+        raise ValueError(f"{where}: variant {name!r} at level {level} has no calibration (fold all); build "
+                         f"figures/scale/calibration_{level}.csv with it")
+    ctx = context_from_files(cfg, reference_path)
+    ctx.size = size_effect(cfg["scale_effect"]["variants"][name])
+    setattr(ctx, FITTED[level][0], float(cal.value.iloc[0]))
+    return ctx, float(cal.value.iloc[0])
+
+
 def similar_shots(spec, refs):
     """The similarity figure's shots: an ogive of the spec's CRH at each calibre, the mass DO1's M/d^3 times d^3."""
     per_volume = refs["table2.mass"].si / refs["table2.diameter"].si ** 3
@@ -96,26 +110,20 @@ def scale_similarity(inputs, outputs, params):
     """Depth over calibre against calibre under geometric similarity at each level, with each variant's factor
     calibrated on the laboratory shots (scale_validation, fold all), and the empirical formulas' size laws."""
     cfg = params.cfg
-    study, spec = cfg["scale_effect"], cfg["scale_effect"]["similarity"]
+    spec = cfg["scale_effect"]["similarity"]
     refs = reference.load_reference(inputs.reference)
     shots = similar_shots(spec, refs)
     calibrations = pd.concat([pd.read_csv(p) for p in inputs.calibrations])
     rows = []
     for level, variants in spec["levels"].items():
         for name in variants:
-            cal = calibrations[(calibrations.level == level) & (calibrations.variant == name)
-                               & (calibrations.fold == "all")]
-            if len(cal) != 1:
-                raise ValueError(f"scale_effect.similarity.levels.{level}: variant {name!r} has no calibration "
-                                 f"(fold all) in {list(inputs.calibrations)}")
-            ctx = context_from_files(cfg, inputs.reference)
-            ctx.size = size_effect(study["variants"][name])
-            setattr(ctx, FITTED[level][0], float(cal.value.iloc[0]))
+            ctx, value = calibrated_context(cfg, inputs.reference, calibrations, level, name,
+                                            f"scale_effect.similarity.levels.{level}")
             for s in shots:
                 r = run(s, level, ctx)
                 d = 2 * s.nose.radius
                 rows.append({"kind": "level", "level": level, **variant_columns(name, ctx.size),
-                             "parameter": FITTED[level][1], "value": float(cal.value.iloc[0]), "calibre_m": d,
+                             "parameter": FITTED[level][1], "value": value, "calibre_m": d,
                              "mass_kg": s.mass, "velocity_ms": s.velocity, "depth_m": r.depth_m,
                              "depth_over_calibre": r.depth_m / d, "status": r.status})
         print(f"{level}: {len(variants)} variants at {len(shots)} calibres", flush=True)
@@ -144,11 +152,8 @@ def scale_table3(inputs, outputs, params):
     rows = []
     for level in sorted(set(calibrations.level)):
         for name in study["similarity"]["levels"].get(level, []):
-            cal = calibrations[(calibrations.level == level) & (calibrations.variant == name)
-                               & (calibrations.fold == "all")]
-            ctx = context_from_files(cfg, inputs.reference)
-            ctx.size = size_effect(study["variants"][name])
-            setattr(ctx, FITTED[level][0], float(cal.value.iloc[0]))
+            ctx, _ = calibrated_context(cfg, inputs.reference, calibrations, level, name,
+                                        f"scale_effect.similarity.levels.{level}")
             for v in sc.velocities:
                 depth = {n: run(UserShot(nose, sc.mass, float(v), sc.target.fc, sc.target.rho, label=n), level,
                                 ctx).depth_m for n, nose in sc.noses.items()}
@@ -167,13 +172,4 @@ def scale_table3(inputs, outputs, params):
 def scale_fe_grid_value(inputs, outputs, params):
     """Every laboratory shot at the fe level of a mesh profile with one failure strain of the grid and one variant
     of the scale effect (a piece, committed, as the laboratory calibration's own grid: fe_laboratory_grid_value)."""
-    if not inputs.data:
-        raise ValueError(f"{outputs.csv} is a committed piece of the grid: delete it to recompute it")
-    shots_path, reference_path = inputs.data
-    _, rows = read_rows(shots_path)
-    ctx = context_from_files(params.cfg, reference_path, profile=params.profile)
-    ctx.size = size_effect(params.cfg["scale_effect"]["variants"][params.variant])
-    runs = grid_value_runs([user_shot(r) for r in rows], ctx, float(params.value), lambda m: print(m, flush=True))
-    write_csv(pd.DataFrame([{"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m,
-                             "status": res.status, "wall_time_s": res.wall_time_s} for r, res in zip(rows, runs)]),
-              outputs.csv)
+    write_grid_piece(inputs, outputs, params, size_effect(params.cfg["scale_effect"]["variants"][params.variant]))
