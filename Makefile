@@ -39,13 +39,13 @@ studies: install
 
 check: install
 	$(BUILD) all reproduce_check --forcerun reproduce_check --config fe_profile=$(FE_PROFILE)
-	$(BIN)/python -m pytest -m slow --durations=8
+	$(BIN)/python -m pytest -m slow -n $(CORES) --dist loadfile --durations=8
 
 check-studies: install
 	$(BUILD) studies reproduce_check_studies --forcerun reproduce_check_studies
 
 test: install
-	$(BIN)/python -m pytest -m "not slow" --durations=15
+	$(BIN)/python -m pytest -m "not slow" -n $(CORES) --durations=15
 
 # Regenerate the lock: the newest versions pyproject.toml allows, resolved in a scratch environment.
 lock:

@@ -1,8 +1,17 @@
+import os
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
+
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    # `make test` runs one worker per core (pytest-xdist): each worker's parallel kernels then run on one thread,
+    # or two workers' thread pools would share the two cores four ways. A test may still ask for more
+    # (numba.set_num_threads up to NUMBA_NUM_THREADS, the machine's cores).
+    import numba
+
+    numba.set_num_threads(1)
 
 
 def committed(path):

@@ -1,7 +1,7 @@
 # The finite-element level. Every output lives under a mesh profile ({profile}: full or ci, config fe.profiles,
-# or a convergence or band profile of fe_convergence.profiles, fe_band.bands);
-# one job per shot (FE runs use both cores: threads 2). FE_OUTPUTS are the paper's (rule all); the FE level's studies
-# (mesh study, contrast convergence, bands, ensembles, rear face, moving windows, the erosion-free target's) are
+# or a convergence or band profile of fe_convergence.profiles, fe_band.bands); one job per shot (threads 2; 1 for
+# the ci profile's small shots). FE_OUTPUTS are the paper's (rule all); the FE level's studies (mesh study,
+# contrast convergence, bands, ensembles, rear face, moving windows, the erosion-free target's) are
 # workflow/rules/fe_studies.smk. A figure is declared like fe_fig12, a table like fe_table3 (use rule ... with:); the
 # FE runs each their own.
 
@@ -79,7 +79,9 @@ rule fe_shot:
     # wildcards) names one job: accuracy_cost reads these records
     wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)),
                           nose="|".join(sorted({n for s in FE_SCENES.values() for n, _ in s}, key=len, reverse=True)),
-    threads: 2
+    # a shot of the ci profile (3 elements across, a few seconds) is too small to gain from a second thread: two
+    # such shots run side by side instead (the result is bit-identical on any thread count: tests/test_fe.py)
+    threads: lambda w: 1 if w.profile == "ci" else 2
     resources: mem_mb=2000, runtime=30
     benchmark: "results/benchmarks/fe_shot_{profile}_{scene}_{nose}_{velocity}.tsv"
     log: "results/logs/fe_shot_{profile}_{scene}_{nose}_{velocity}.log",

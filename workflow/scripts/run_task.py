@@ -1,10 +1,15 @@
 """Run the task of the calling Snakemake rule (the function of the rule's name in its task module).
 
-Output goes both to the terminal and to the rule's log file. The job ends when its Snakemake ends, even when
-Snakemake was killed (pipeline.end_with_parent): an orphaned job never writes its outputs later.
+Output goes both to the terminal and to the rule's log file; numba's parallel kernels get the rule's threads. The
+job ends when its Snakemake ends, even when Snakemake was killed (pipeline.end_with_parent): an orphaned job never
+writes its outputs later.
 """
 import contextlib
+import os
 import sys
+
+# the job's parallel kernels use the threads Snakemake gave it, no more (numba reads this when first imported)
+os.environ["NUMBA_NUM_THREADS"] = str(snakemake.threads)  # noqa: F821
 
 from penetration.pipeline.dispatch import end_with_parent, run
 
