@@ -94,17 +94,21 @@ def test_effect_errors_name_the_field():
 
 
 def test_scene_schema_effects_are_the_registries():
-    """Every effect a scene may name is a registered trajectory or material effect, and the reverse."""
+    """Every effect a scene may name is a registered trajectory, material or FE effect or the scale effect, and the
+    reverse; the scale effect's mechanisms in the schema are its registry's."""
     import json
     from pathlib import Path
 
     from penetration.analytic.trajectory import EFFECTS
     from penetration.concrete.effects import MATERIAL_EFFECTS
-    from penetration.pipeline.scenes import FE_EFFECTS
+    from penetration.concrete.size import SIZE_MECHANISMS
+    from penetration.pipeline.scenes import FE_EFFECTS, SIZE
     schema = json.loads((Path(__file__).resolve().parents[1] / "workflow/schemas/scene.schema.json").read_text())
     named = set(schema["properties"]["effects"]["items"]["enum"])
-    assert named == set(EFFECTS) | set(MATERIAL_EFFECTS) | set(FE_EFFECTS)
-    assert not set(EFFECTS) & set(MATERIAL_EFFECTS) and not (set(EFFECTS) | set(MATERIAL_EFFECTS)) & set(FE_EFFECTS)
+    assert named == set(EFFECTS) | set(MATERIAL_EFFECTS) | set(FE_EFFECTS) | {SIZE}
+    groups = [set(EFFECTS), set(MATERIAL_EFFECTS), set(FE_EFFECTS), {SIZE}]
+    assert sum(map(len, groups)) == len(set().union(*groups))
+    assert set(schema["properties"][SIZE]["properties"]["mechanisms"]["items"]["enum"]) == set(SIZE_MECHANISMS)
 
 
 @pytest.mark.parametrize("nose", [Ogive(3, 0.07), Cone(0.07, 0.3), DO, MinimumNstar(0.07, 0.3), Flat(0.07)],

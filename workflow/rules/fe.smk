@@ -184,7 +184,8 @@ rule fe_nose_pressure:
 rule fe_verification:
     input: **task("tasks.verification"),
     output: csv="figures/fe_verification.csv",
-    threads: 2
+    # small problems, which a second thread hardly speeds: one thread, so that another job runs beside it
+    threads: 1
     resources: mem_mb=1000, runtime=10
     benchmark: "results/benchmarks/fe_verification.tsv"
     log: "results/logs/fe_verification.log",

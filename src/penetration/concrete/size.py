@@ -90,6 +90,20 @@ def material_rate_law(effect: SizeEffect | None) -> str:
     return f"mc2010_{effect.beyond}"
 
 
+def with_rate_law(material: HJC, effect: SizeEffect | None) -> HJC:
+    """The material with the effect's rate law (material_rate_law); unchanged where that is HJC's own."""
+    law = material_rate_law(effect)
+    return material if law == "hjc" else dataclasses.replace(material, rate_law=law)
+
+
+def fracture_factor(effect: SizeEffect | None, diameter) -> float:
+    """Bazant's factor on the resistance at calibre ``diameter`` (m) where the effect has the fracture mechanism (the
+    cavity level's: on its strength scale), 1 otherwise."""
+    if effect is None or "fracture" not in effect.mechanisms:
+        return 1.0
+    return float(SIZE_MECHANISMS["fracture"](effect, diameter, 1.0))
+
+
 def resistance_factor(effect: SizeEffect | None, diameter, velocity, mechanisms=None):
     """The factor on the static resistance of a shot of calibre ``diameter`` (m) struck at ``velocity`` (m/s): the
     product over the effect's mechanisms (or over ``mechanisms``, a subset of them); 1 without the effect."""

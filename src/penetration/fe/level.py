@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from ..concrete import material as concrete
+from ..concrete.size import regularised, with_rate_law
 from ..errors import ParameterError
 from .shot import RunSpec, Settings, TargetSpec, progress_to, run_shot
 
@@ -61,8 +62,9 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
     values times ``velocity_factor``), built once: the scene's concrete (concrete.configured with the scene's
     effects), the profile's settings (scene_settings: the scene's domain unless ``domain`` names one), the scene's
     target and, where the scene asks for the calibrated erosion strain, the DO1 ``calibration`` (its JSON record, at
-    the profile's element size). Returns (spec, notes) with notes the failure strain, its provenance and the material
-    switches."""
+    the profile's element size); with the scene's scale effect (size), MC2010's rate factor at each element's rate
+    in the material and the crack band at the mesh's element size (concrete.size). Returns (spec, notes) with notes
+    the failure strain, its provenance and the material switches."""
     _check_table1_target(scene, refs)
     v = float(velocity)
     if not np.any(np.isclose(scene.velocities, v)):
@@ -83,7 +85,8 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
             raise ValueError(f"calibration at element size {calibration['element_size']} m used on a "
                              f"{settings.element_size} m mesh")
         fs, provenance = calibration["fs"], f"calibrated on DO1 at element size {calibration['element_size']} m"
-    spec = run_spec(scene.noses[nose], scene.mass, v * velocity_factor, material_at(scale), settings, target,
+    material = regularised(with_rate_law(material_at(scale), scene.size), scene.size, settings.element_size)
+    spec = run_spec(scene.noses[nose], scene.mass, v * velocity_factor, material, settings, target,
                     expected_depth, scene.friction, fs)
     return spec, {"failure_strain": fs, "failure_strain_provenance": provenance, "material_switches": switches,
                   "strength_scale": scale, "strength_scale_provenance": scale_provenance}

@@ -14,6 +14,7 @@ the key. The merged scene is what is validated and run.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import re
@@ -25,6 +26,8 @@ import numpy as np
 from ..analytic.resistance import Target, strength_factor
 from ..analytic.trajectory import EFFECTS, EXCLUDES
 from ..concrete.effects import MATERIAL_EFFECTS
+from ..concrete.size import SizeEffect, resistance_factor
+from ..errors import ParameterError
 from ..levels import WHAT
 from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from . import config
@@ -32,11 +35,13 @@ from . import config
 MAX_VELOCITIES = 1000
 # Effects of the finite-element level beyond the material's (fe.erosion_strain sets the criterion's value).
 FE_EFFECTS = {"erosion": "element erosion once the equivalent plastic strain reaches fe.erosion_strain"}
+# The scale effect (concrete.size), at every level: a scene lists it as effect ``size`` with its settings in ``size``.
+SIZE = "size"
 # Level -> (effects it can use, effects it must have, what it is). The analytic
-# level is Eq 9, the closed form of exactly crater + static + inertial; a
-# trajectory needs a static term to stop; the cavity level's forces come from
-# its sigma_n table.
-LEVELS = {name: (allowed, required, WHAT[name]) for name, allowed, required in (
+# level is Eq 9, the closed form of exactly crater + static + inertial (with the
+# scale effect's factor on S where size is listed); a trajectory needs a static
+# term to stop; the cavity level's forces come from its sigma_n table.
+LEVELS = {name: (allowed | {SIZE}, required, WHAT[name]) for name, allowed, required in (
     ("analytic", {"crater", "static", "inertial"}, {"crater", "static", "inertial"}),
     ("trajectory", set(EFFECTS) - {"cavity"}, {"static"}),
     ("cavity", set(EFFECTS) - EXCLUDES["cavity"] | set(MATERIAL_EFFECTS), {"cavity"}),
@@ -58,12 +63,21 @@ class Scene:
     target: Target
     velocities: np.ndarray
     level: str
-    effects: tuple
+    effects: tuple                  # the level's physics; the scale effect, where listed, is ``size`` instead
     friction: float = 0.0
     ramp_depth: float | None = None
     provenance: dict = field(default_factory=dict)
     material: dict = field(default_factory=dict)
     fe: dict = field(default_factory=dict)
+    size: SizeEffect | None = None  # the scale effect (effect size), None: scale-free
+
+    def target_at(self, radius, velocity) -> Target:
+        """The closed forms' target of a shot of this scene at nose ``radius`` and striking ``velocity``: S times
+        the scale effect's factor at calibre 2 radius and V (concrete.size.resistance_factor), or the scene's."""
+        if self.size is None:
+            return self.target
+        return dataclasses.replace(self.target, S=self.target.S * float(
+            resistance_factor(self.size, 2.0 * radius, velocity)))
 
 
 # a scene's name (its file's stem) as the Snakefile's scene wildcard admits it
@@ -181,7 +195,7 @@ def check_level(data, where="scene"):
     if missing:
         raise SceneError(f"{where}: effects: level {level} ({what}) needs {missing}; given {sorted(effects)}; "
                          f"allowed: a list including {sorted(required)}")
-    settings = {"friction": "friction", "ramp_depth": "free_surface_ramp"}
+    settings = {"friction": "friction", "ramp_depth": "free_surface_ramp", "size": SIZE}
     for key, needs in settings.items():
         if key in data and needs not in effects:
             raise SceneError(f"{where}: {key} is set but effect {needs} is not listed; allowed: list {needs} or drop {key}")
@@ -242,10 +256,31 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
         S = strength["value"]
         prov["S"] = "given"
     noses = {n: _nose(spec, radius, inferred_noses) for n, spec in data["noses"].items()}
+    size = None
+    if SIZE in data["effects"]:
+        size = size_effect(data.get(SIZE, {}), f"{name}: size")
+        prov[SIZE] = describe_size(size)
     return Scene(name, data["projectile"]["mass"], radius, noses, Target(t["rho"], t["fc"], S),
-                 velocities(data["velocities"], f"{name}: velocities"), data["level"], tuple(data["effects"]),
-                 data.get("friction", 0.0), data.get("ramp_depth"), prov,
-                 {k: data[k] for k in ("lock", "tension") if k in data}, dict(data.get("fe", {})))
+                 velocities(data["velocities"], f"{name}: velocities"), data["level"],
+                 tuple(e for e in data["effects"] if e != SIZE), data.get("friction", 0.0), data.get("ramp_depth"), prov,
+                 {k: data[k] for k in ("lock", "tension") if k in data}, dict(data.get("fe", {})), size)
+
+
+def size_effect(spec, where="size") -> SizeEffect:
+    """The scale effect of a scene's ``size`` settings (defaults: concrete.size.SizeEffect's)."""
+    spec = dict(spec)
+    if "mechanisms" in spec:
+        spec["mechanisms"] = tuple(spec["mechanisms"])
+    try:
+        return SizeEffect(**spec)
+    except ParameterError as err:
+        raise SceneError(f"{where}: {err}") from err
+
+
+def describe_size(size: SizeEffect) -> str:
+    """The scale effect in words, for a result's provenance."""
+    return (f"{'+'.join(size.mechanisms)} (rate factor beyond 300 1/s: {size.beyond}; largest aggregate "
+            f"{size.aggregate * 1e3:g} mm, D0 = {size.lambda0:g} d_a)")
 
 
 def scene_name(path):

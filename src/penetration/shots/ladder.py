@@ -39,7 +39,7 @@ from ..cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
 from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
-from ..concrete.size import SizeEffect, material_rate_law, regularised, resistance_factor
+from ..concrete.size import SizeEffect, fracture_factor, regularised, resistance_factor, with_rate_law
 from ..errors import ParameterError
 from ..levels import LEVELS
 from ..nose.geometry import NOSES, Flat, Ogive, make_nose
@@ -210,22 +210,15 @@ def cavity_material(shot: UserShot, ctx: Context) -> HJC:
     scale = _need(ctx.strength_scale, "strength_scale", f"the cavity level's calibration (its committed record {rec}: "
                   f"snakemake -c2 {rec}; or --calibration do1|laboratory|FILE, or give a strength scale: "
                   "--strength-scale)")
-    if ctx.size is not None and "fracture" in ctx.size.mechanisms:
-        scale *= float(resistance_factor(ctx.size, 2.0 * shot.nose.radius, shot.velocity, ["fracture"]))
-    return _with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density, scale), ctx)
-
-
-def _with_rate_law(material: HJC, ctx: Context) -> HJC:
-    """The material with the scale effect's rate law (the strength's factor at each point's own rate)."""
-    law = material_rate_law(ctx.size)
-    return material if law == "hjc" else dataclasses.replace(material, rate_law=law)
+    scale *= fracture_factor(ctx.size, 2.0 * shot.nose.radius)
+    return with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density, scale), ctx.size)
 
 
 def fe_material(shot: UserShot, ctx: Context) -> HJC:
     """The fe level's concrete of a shot: the base set scaled to its fc and density (its calibration, the failure
     strain, belongs to the run settings); with the scale effect's rate mechanism, MC2010's rate factor at each
     element's rate in place of HJC's (its fracture mechanism, a crack band, needs the element size: fe_spec)."""
-    return _with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density), ctx)
+    return with_rate_law(shot_concrete(ctx.base, shot.fc, shot.density), ctx.size)
 
 
 def check_table_span(shot: UserShot, ctx: Context):

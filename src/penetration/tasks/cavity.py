@@ -12,6 +12,7 @@ from ..cavity.level import SigmaTable, calibrate_parameter, cavity_settings, cav
 from ..concrete import material as concrete
 from ..concrete.effects import MATERIAL_EFFECTS
 from ..concrete.hjc import LOCKS, PointState, drive
+from ..concrete.size import fracture_factor, with_rate_law
 from ..nose.nstar import nstar
 from ..paper import reference
 from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
@@ -105,15 +106,20 @@ def scene_cavity(inputs, outputs, params):
     The material effects strain_rate, damage and strength_cap switch the HJC
     terms; a scene that turns any of them off (or picks another lock or
     tension convention) gets its own sigma_n table at the calibrated
-    strength scale.
+    strength scale. So does a scene with the scale effect (size): its rate
+    mechanism is MC2010's factor at each point's rate in the material, its
+    fracture mechanism Bazant's factor at the scene's calibre on the strength
+    scale (concrete.size), as at the ladder's cavity level.
     """
-    sc = scene_from_inputs(inputs, CAVITY)
+    sc = scene_from_inputs(inputs, CAVITY, size=True)
     switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
-    if switches:
+    if switches or sc.size is not None:
         refs, cfg, mesh, controls, scale = calibrated_context(inputs, params)
-        mat = concrete.configured(refs, params.hjc, strength_scale=scale, **switches)
+        scale *= fracture_factor(sc.size, 2.0 * sc.radius)
+        mat = with_rate_law(concrete.configured(refs, params.hjc, strength_scale=scale, **switches), sc.size)
         table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
-        print(f"own sigma_n table for switches {switches}")
+        print(f"own sigma_n table for switches {switches}" + (f", scale effect {sc.provenance['size']}" if sc.size
+                                                               else ""))
     else:
         table = read_sigma_table(inputs.sigma)
     effects = tuple(e for e in sc.effects if e not in MATERIAL_EFFECTS)

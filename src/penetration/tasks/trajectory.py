@@ -16,13 +16,23 @@ from .common import PLAIN, scene_from_inputs
 
 
 def _dop_rows(sc, radius_case="chosen"):
+    """Eq 9's depth of every nose and velocity; with the scale effect, at each shot's own S (Scene.target_at) and
+    with its factor on S as a column."""
     rows = []
     for name, nose in sc.noses.items():
         n = nstar(nose)
-        d = penetration_depth(sc.mass, nose.radius, n, sc.target, sc.velocities)
-        rows += [{"scene": sc.name, "nose": name, "radius_case": radius_case, "radius": nose.radius, "nstar": n,
-                  "S": sc.target.S, "velocity": v, "dop": di, "dop_over_d": di / (2 * nose.radius)}
-                 for v, di in zip(sc.velocities, d)]
+        if sc.size is None:
+            d = penetration_depth(sc.mass, nose.radius, n, sc.target, sc.velocities)
+            rows += [{"scene": sc.name, "nose": name, "radius_case": radius_case, "radius": nose.radius, "nstar": n,
+                      "S": sc.target.S, "velocity": v, "dop": di, "dop_over_d": di / (2 * nose.radius)}
+                     for v, di in zip(sc.velocities, d)]
+            continue
+        for v in sc.velocities:
+            target = sc.target_at(nose.radius, v)
+            di = float(penetration_depth(sc.mass, nose.radius, n, target, v))
+            rows.append({"scene": sc.name, "nose": name, "radius_case": radius_case, "radius": nose.radius, "nstar": n,
+                         "S": target.S, "velocity": v, "dop": di, "dop_over_d": di / (2 * nose.radius),
+                         "size_factor": target.S / sc.target.S})
     return rows
 
 
@@ -31,7 +41,7 @@ def _histories(sc, radius_case, rtol):
     for name, nose in sc.noses.items():
         n = nstar(nose)
         for v in sc.velocities:
-            asm = assemble(sc.effects, nose, n, sc.mass, sc.target, v, sc.friction, sc.ramp_depth)
+            asm = assemble(sc.effects, nose, n, sc.mass, sc.target_at(nose.radius, v), v, sc.friction, sc.ramp_depth)
             tr = integrate(asm, sc.mass, v, rtol=rtol)
             rows.append(pd.DataFrame({"nose": name, "radius_case": radius_case, "velocity": v, "t": tr.t, "z": tr.z,
                                       "v": tr.v, "deceleration": tr.deceleration}))
@@ -43,8 +53,9 @@ def _histories(sc, radius_case, rtol):
 
 @task
 def scene(inputs, outputs, params):
-    """DOP of every nose and velocity of a scene; histories at trajectory level."""
-    sc = scene_from_inputs(inputs, PLAIN)
+    """DOP of every nose and velocity of a scene; histories at trajectory level (with the scene's scale effect where
+    it lists one)."""
+    sc = scene_from_inputs(inputs, PLAIN, size=True)
     variants = [("chosen", sc)]
     if "radius" in sc.provenance:
         lo, hi = load_json(inputs.diameter)["interval"]
