@@ -93,6 +93,12 @@ def _level_options(p, model_help):
                    help="cavity level: factor on the HJC strength surface instead of the calibration (> 0)")
     p.add_argument("--failure-strain", type=_option_number, default=None,
                    help="fe level: erosion strain instead of the calibration (> 0)")
+    p.add_argument("--size", default="auto", metavar="auto|none|VARIANT",
+                   help="the scale effect (docs/scale-effect.md): a variant of the config's scale_effect.variants, with "
+                        "the level's factor fitted with it on the laboratory shots (figures/scale/calibration_LEVEL.csv), "
+                        "none, or auto (the default: the variant that meets every goal of the committed validation at "
+                        "the level, figures/scale/validation_LEVEL.csv, else none); the answer's accuracy line says "
+                        "which and how it validated")
 
 
 def _wrap(text, indent=0):
@@ -181,11 +187,10 @@ def _predict(args) -> int:
     except (OSError, ValueError) as err:
         return _fail(f"cannot read shots file {args.shots}: {getattr(err, 'strerror', None) or err}")
     ctx = None
-    if args.model != "analytic":
-        try:
-            ctx = _context(args)
-        except (ParameterError, ConfigError, OSError) as err:
-            return _fail(str(err))
+    try:
+        ctx = _context(args) if args.model != "analytic" else _sized(args, None)
+    except (ParameterError, ConfigError, OSError) as err:
+        return _fail(str(err))
     good = []
     _interruptible()
     try:
@@ -280,27 +285,43 @@ def _validation(args):
 
 
 def _trust(args, shot, level):
-    """The validated accuracy line of ``level`` and the warnings for ``shot`` (from the committed validation)."""
-    from .shots.trust import accuracy_line, warnings
+    """The validated accuracy line of ``level`` and the warnings for ``shot`` (from the committed validation), with
+    the scale effect the shot ran with."""
+    from .shots.trust import warnings
     found = _validation(args)
     if found is None:
         return UNKNOWN_ACCURACY, []
     rng, errors = found
-    line = accuracy_line(level, errors[level]) if level in errors else f"no validation of the {level} level"
+    line, rng = _accuracy_with_size(args, level, errors, rng)
     return f"{line}; validated range: {rng.describe()}", warnings(shot, rng)
+
+
+def _accuracy_with_size(args, level, errors, rng):
+    """(the accuracy line of ``level`` as the run used it, the validated range): with a variant of the scale effect,
+    that variant's validation (its range widened to DO1's calibre where it predicts DO1 within the goal); without,
+    the level's validation and why the effect is off."""
+    from .shots.records import scale_effect_accuracy
+    from .shots.trust import accuracy_line, scale_effect_line, with_scale_effect_range
+    variant, why = getattr(args, "size_variant", ("none", "not chosen"))
+    row = scale_effect_accuracy(args.root, level, variant)
+    if variant != "none":
+        return f"validated accuracy of the {level} level with the {scale_effect_line(variant, why, row)}", \
+            with_scale_effect_range(rng, row)
+    line = accuracy_line(level, errors[level]) if level in errors else f"no validation of the {level} level"
+    return f"{line}; {scale_effect_line(variant, why, row)}", rng
 
 
 def _predict_trust(args, good):
     """The level's validated accuracy, and a warning for each predicted row outside the validated range (stderr)."""
     from .shots.ladder import user_shot
-    from .shots.trust import accuracy_line, warnings
+    from .shots.trust import warnings
     found = _validation(args)
     if found is None:
         print(UNKNOWN_ACCURACY, file=sys.stderr)
         return
     rng, errors = found
-    if args.model in errors:
-        print(accuracy_line(args.model, errors[args.model]), file=sys.stderr)
+    line, rng = _accuracy_with_size(args, args.model, errors, rng)
+    print(line, file=sys.stderr)
     for row in good:
         try:
             shot = user_shot(row)
@@ -317,7 +338,7 @@ def _context(args):
     root = Path(args.root)
     if not (root / "workflow/config.yaml").is_file():
         raise ParameterError("argument", "--root", args.root, "a pipeline directory with workflow/config.yaml")
-    ctx = context_from_pipeline(root, args.profile, args.strength_law, args.calibration)
+    ctx = _sized(args, context_from_pipeline(root, args.profile, args.strength_law, args.calibration))
     if not args.max_minutes > 0:
         raise ParameterError("argument", "--max-minutes", args.max_minutes, "--max-minutes > 0")
     ctx.fe_max_seconds = 60.0 * args.max_minutes
@@ -330,6 +351,22 @@ def _context(args):
             setattr(ctx, attr, value)
             setattr(ctx, f"{attr}_source", f"given on the command line ({name})")
     return ctx
+
+
+def _sized(args, ctx):
+    """``ctx`` (None: the analytic level's own, of --strength-law) with the scale effect of --size at the level of
+    --model (shots.records.chosen_size; the variant and why it was chosen kept in args for the accuracy line); None
+    for the analytic level without it (Eq 9 as before)."""
+    from .shots.ladder import Context
+    from .shots.records import NO_SIZE, chosen_size, scale_effect_context
+    root = Path(args.root)
+    variant, why = chosen_size(root, args.model, args.size) if (root / "workflow/config.yaml").is_file() else (
+        args.size if args.size != "auto" else NO_SIZE, "no pipeline under --root")
+    args.size_variant = (variant, why)
+    if variant == NO_SIZE:
+        return ctx
+    return scale_effect_context(ctx or Context(strength_law=args.strength_law), root, args.model, variant,
+                                args.profile)
 
 
 def _shot(args):
@@ -346,7 +383,7 @@ def _one_shot(args) -> int:
         return _fail("--model analytic has no history; allowed for simulate: trajectory, cavity, fe")
     try:
         shot = _shot(args)
-        ctx = _context(args) if args.model != "analytic" else None
+        ctx = _context(args) if args.model != "analytic" else _sized(args, None)
         if ctx is None:
             from .shots.ladder import Context
             ctx = Context(strength_law=args.strength_law)

@@ -69,6 +69,17 @@ class SizeEffect:
         """D0 = lambda0 d_a (m)."""
         return self.lambda0 * self.aggregate
 
+    @classmethod
+    def from_spec(cls, spec):
+        """The effect of a settings mapping (a scene's ``size``, a variant of the config's scale_effect.variants;
+        absent keys take the defaults); None for None (a variant without the effect)."""
+        if spec is None:
+            return None
+        spec = dict(spec)
+        if "mechanisms" in spec:
+            spec["mechanisms"] = tuple(spec["mechanisms"])
+        return cls(**spec)
+
 
 @mechanism("rate")
 def _rate(effect: SizeEffect, diameter, velocity):

@@ -268,11 +268,8 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
 
 def size_effect(spec, where="size") -> SizeEffect:
     """The scale effect of a scene's ``size`` settings (defaults: concrete.size.SizeEffect's)."""
-    spec = dict(spec)
-    if "mechanisms" in spec:
-        spec["mechanisms"] = tuple(spec["mechanisms"])
     try:
-        return SizeEffect(**spec)
+        return SizeEffect.from_spec(spec)
     except ParameterError as err:
         raise SceneError(f"{where}: {err}") from err
 

@@ -429,8 +429,11 @@ def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None,
     FE run) skips its row with the reason. ``progress(i, n)`` is called after each row. ``good``: a list the
     predicted rows are appended to as they come (an interrupted run keeps them there).
     """
-    if level == "analytic":
+    if level == "analytic" and (ctx is None or ctx.size is None):
         return row_predictions(rows, eq9_columns(law))
+    if level == "analytic":   # with the scale effect: the ladder's analytic level, S x the effect's factor per shot
+        return row_predictions(rows, lambda row: {"dop_pred_m": f"{run(user_shot(row), level, ctx).depth_m:.6g}"},
+                               (ShotError, ValueError), progress, good)
 
     def predict(row):
         res = run(user_shot(row), level, ctx)

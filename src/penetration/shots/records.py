@@ -11,11 +11,14 @@ import pandas as pd
 
 from ..cavity.level import cavity_settings
 from ..concrete import material as concrete
+from ..concrete.size import SizeEffect
 from ..errors import ParameterError
 from ..fe.shot import Settings
 from ..paper import reference
 from ..pipeline.config import element_sizes, load_with
 from ..pipeline.io import load_json, read_rows
+from ..studies.laboratory import FITTED
+from ..studies.scale import recommended_variant
 from .ladder import Context
 from .trust import ValidatedRange
 
@@ -79,6 +82,87 @@ def _calibration(path, key) -> dict:
     if "element_size_m" in row:
         out.update(element_size=float(row.element_size_m), elements_across_radius=float(row.elements_across_radius))
     return out
+
+
+# The scale effect's study (rule scale_validation): each level's factor fitted on the laboratory shots with each
+# variant of the effect (fold all: what a user's shot gets), and its validation (leave one series out; DO1)
+SCALE_CALIBRATION = "figures/scale/calibration_{level}.csv"
+SCALE_VALIDATION = "figures/scale/validation_{level}.csv"
+NO_SIZE = "none"
+AUTO_SIZE = "auto"
+
+
+def chosen_size(root, level, size) -> tuple[str, str]:
+    """(the variant of the scale effect a shot at ``level`` runs with, why): ``size`` itself, or for ``auto`` the
+    variant that meets every goal of the committed validation at that level (studies.scale.recommended_variant),
+    else none."""
+    if size != AUTO_SIZE:
+        return size, "chosen (--size)"
+    path = Path(root) / SCALE_VALIDATION.format(level=level)
+    if not path.is_file():
+        return NO_SIZE, f"no validation of the scale effect at level {level} ({SCALE_VALIDATION.format(level=level)})"
+    best = recommended_variant(pd.read_csv(path).to_dict("records"))
+    if best is None:
+        return NO_SIZE, f"no variant meets the validation's goals at level {level} ({SCALE_VALIDATION.format(level=level)})"
+    return best, f"it meets every goal of the validation at level {level} ({SCALE_VALIDATION.format(level=level)})"
+
+
+def with_scale_effect(ctx: Context, cfg, calibrations, level, variant, where="--size") -> Context:
+    """``ctx`` with ``variant`` of the config's scale_effect.variants and ``level``'s factor fitted with it on every
+    laboratory shot (``calibrations``: the study's calibration table, its fold ``all``); ``where`` names the setting
+    in the errors. The factor is a calibration on the laboratory shots, and the context's source says so."""
+    variants = cfg["scale_effect"]["variants"]
+    if variant not in variants:
+        raise ParameterError("argument" if where.startswith("-") else "config", where, variant,
+                             f"one of {sorted(variants)} (the config's scale_effect.variants)")
+    cal = calibrations[(calibrations.level == level) & (calibrations.variant == variant) & (calibrations.fold == "all")]
+    if len(cal) != 1:
+        raise ParameterError("argument" if where.startswith("-") else "config", where, variant,
+                             f"a variant calibrated at level {level}: {SCALE_CALIBRATION.format(level=level)} has "
+                             f"{sorted(set(calibrations.variant[calibrations.level == level]))} (build it with "
+                             f"snakemake -c2 {SCALE_CALIBRATION.format(level=level)})")
+    attr, _, what = FITTED[level]
+    value = float(cal.value.iloc[0])
+    ctx.size = SizeEffect.from_spec(variants[variant])
+    setattr(ctx, attr, value)
+    if hasattr(ctx, f"{attr}_source"):
+        setattr(ctx, f"{attr}_source", f"{what} with the scale effect {variant} ({SCALE_CALIBRATION.format(level=level)})")
+    return ctx
+
+
+def scale_effect_context(ctx: Context, root, level, variant, profile) -> Context:
+    """``ctx`` (the pipeline's, under ``root``) with the scale effect's ``variant`` and its calibration at ``level``
+    from the committed study (with_scale_effect); ``none`` leaves it as it is. The fe level's factor belongs to the
+    study's mesh profile, which ``profile`` must be."""
+    if variant == NO_SIZE:
+        return ctx
+    root = Path(root)
+    cfg = load_with(root / "workflow/config.yaml", {})
+    if level == "fe" and profile != cfg["scale_effect"]["fe_profile"]:
+        raise ParameterError("argument", "--profile", profile, f"{cfg['scale_effect']['fe_profile']} with --size at the "
+                             "fe level (the scale effect's failure strain was fitted at that mesh)")
+    path = root / SCALE_CALIBRATION.format(level=level)
+    if not path.is_file():
+        raise ParameterError("argument", "--size", variant, f"none: the scale effect at level {level} is not calibrated "
+                             f"under {root} ({path.relative_to(root)} is missing; snakemake -c2 "
+                             f"{path.relative_to(root)})")
+    return with_scale_effect(ctx, cfg, pd.read_csv(path), level, variant)
+
+
+def scale_effect_accuracy(root, level, variant):
+    """The validation of ``variant`` at ``level`` (a row of figures/scale/validation_LEVEL.csv as a dict, with DO1's
+    calibre from the reference as ``do1_diameter_m``), or None."""
+    root = Path(root)
+    path = root / SCALE_VALIDATION.format(level=level)
+    if variant == NO_SIZE or not path.is_file():
+        return None
+    table = pd.read_csv(path)
+    row = table[(table.level == level) & (table.variant == variant)]
+    if len(row) != 1:
+        return None
+    cfg = load_with(root / "workflow/config.yaml", {})
+    refs = reference.load_reference(root / cfg["reference"])
+    return {**row.iloc[0].to_dict(), "do1_diameter_m": refs["table2.diameter"].si}
 
 
 def cavity_calibration_path(root, calibration) -> Path:

@@ -8,7 +8,10 @@ known. Pure functions: the files are read by ``shots.records.validated_accuracy`
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+
+from ..studies.scale import GOALS, goals_met
 
 # shot quantity (SI, as levels.UserShot holds it) -> (development shots' CSV column, its SI factor, label, unit
 # shown, the unit's factor from SI)
@@ -70,6 +73,31 @@ def warnings(shot, rng: ValidatedRange) -> list[str]:
     elif not rng.crh[0] <= nose.psi <= rng.crh[1]:
         out.append(f"CRH {nose.psi:g} is outside the validated CRH {rng.crh[0]:g}-{rng.crh[1]:g}")
     return out
+
+
+def with_scale_effect_range(rng: ValidatedRange, row) -> ValidatedRange:
+    """The validated range of a level run with a variant of the scale effect (``row``: its validation, with DO1's
+    calibre): the calibres widened up to DO1's where the variant predicts DO1, which no fit has seen, within the
+    validation's goal; else the development shots' range."""
+    if row is None or not abs(float(row["do1_rel_error"])) <= GOALS["do1"]:
+        return rng
+    lo, hi = rng.bounds["diameter"]
+    return dataclasses.replace(rng, bounds={**rng.bounds, "diameter": (lo, max(hi, float(row["do1_diameter_m"])))})
+
+
+def scale_effect_line(variant, why, row) -> str:
+    """What an answer's scale effect is and how its level did with it on the validation (``row``; None: not
+    validated)."""
+    if variant == "none":
+        return f"scale effect none ({why})"
+    if row is None:
+        return f"scale effect {variant} ({why}); not validated at this level"
+    met = goals_met(row)
+    return (f"scale effect {variant} ({why}): leave one series out on {int(row['loso_shots'])} laboratory shots, "
+            f"median |error| {100 * float(row['loso_median_abs_rel_err']):.0f} %, 90th percentile "
+            f"{100 * float(row['loso_p90_abs_rel_err']):.0f} %, the two series' factors {float(row['split_ratio']):.2f} "
+            f"apart; DO1 ({1e3 * float(row['do1_diameter_m']):.0f} mm, in no fit) "
+            f"{100 * float(row['do1_rel_error']):+.0f} %; {sum(met.values())} of {len(met)} goals met")
 
 
 def accuracy_line(level, errors: dict) -> str:

@@ -33,6 +33,16 @@ from ..errors import ParameterError
 from ..levels import LEVELS
 from .stats import slope, within_slope
 
+# level -> (the Context attribute fitted, the record's parameter name, what it is)
+FITTED = {
+    "analytic": ("strength_factor_scale", "s_scale", "factor on the S of the strength law (Li & Chen's by default) of the "
+                 "closed form (Eq 9), fitted on laboratory shots"),
+    "cavity": ("strength_scale", "strength_scale", "HJC strength_scale: factor on the whole strength surface of every shot's concrete (the "
+               "HJC set of Table 1 scaled to the shot's fc by the scaling rule), fitted on laboratory shots"),
+    "fe": ("failure_strain", "fs", "erosion strain of the fe level's target at its mesh (the same elements across every "
+           "shot's shank radius), fitted on laboratory shots"),
+}
+
 
 @dataclass(frozen=True)
 class Protocol:

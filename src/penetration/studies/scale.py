@@ -37,3 +37,23 @@ def split_summary(fits, predictions, do1, series):
                     "do1_rel_error": float(d.rel_error.iloc[0]) if len(d) else np.nan})
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+# the targets the scale effect's validation is read against: a physics level's leave-one-series-out errors (median
+# and 90th percentile of |error|, pooled), the two series' fitted factors (their ratio), DO1 without a DO1 calibration
+GOALS = {"loso_median": 0.07, "loso_p90": 0.20, "split_ratio": 1.20, "do1": 0.10}
+
+
+def goals_met(row) -> dict:
+    """Which goals a row of the validation summary (split_summary's columns) meets: goal -> bool."""
+    return {"loso_median": float(row["loso_median_abs_rel_err"]) <= GOALS["loso_median"],
+            "loso_p90": float(row["loso_p90_abs_rel_err"]) <= GOALS["loso_p90"],
+            "split_ratio": float(row["split_ratio"]) <= GOALS["split_ratio"],
+            "do1": abs(float(row["do1_rel_error"])) <= GOALS["do1"]}
+
+
+def recommended_variant(rows):
+    """The variant of the effect a user's shot gets by default: among the validation summary's rows (dicts) with
+    the effect that meet every goal, the one of the smallest held-out median |error|; None where none does."""
+    good = [r for r in rows if r["variant"] != "none" and all(goals_met(r).values())]
+    return min(good, key=lambda r: float(r["loso_median_abs_rel_err"]))["variant"] if good else None

@@ -12,19 +12,9 @@ from ..paper import reference
 from ..pipeline.config import machine_name
 from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run, user_shot
-from ..studies.laboratory import Protocol, errors_summary, fit_factor, interpolated_depths
+from ..studies.laboratory import FITTED, Protocol, errors_summary, fit_factor, interpolated_depths
 from .common import do1_shot
 from .levels import context_from_files
-
-# level -> (the Context attribute fitted, the record's parameter name, what it is)
-FITTED = {
-    "analytic": ("strength_factor_scale", "s_scale", "factor on the S of the strength law (Li & Chen's by default) of the "
-                 "closed form (Eq 9), fitted on laboratory shots"),
-    "cavity": ("strength_scale", "strength_scale", "HJC strength_scale: factor on the whole strength surface of every shot's concrete (the "
-               "HJC set of Table 1 scaled to the shot's fc by the scaling rule), fitted on laboratory shots"),
-    "fe": ("failure_strain", "fs", "erosion strain of the fe level's target at its mesh (the same elements across every "
-           "shot's shank radius), fitted on laboratory shots"),
-}
 
 
 def shot_groups(protocol: Protocol, rows):

@@ -13,19 +13,12 @@ from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
-from ..shots.records import context_from_files
-from ..studies.laboratory import Protocol
+from ..shots.records import context_from_files, with_scale_effect
+from ..studies.laboratory import FITTED, Protocol
 from ..studies.fe_results import CONTRASTS
 from ..studies.scale import split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
-from .laboratory import FITTED, calibrate_on_laboratory, grid_runs_from, write_grid_piece
-
-
-def size_effect(spec) -> SizeEffect | None:
-    """A variant of the config's scale_effect.variants as the effect (None: without it)."""
-    if spec is None:
-        return None
-    return SizeEffect(**{**spec, "mechanisms": tuple(spec["mechanisms"])})
+from .laboratory import calibrate_on_laboratory, grid_runs_from, write_grid_piece
 
 
 def variant_columns(name, effect: SizeEffect | None):
@@ -57,7 +50,7 @@ def scale_validation(inputs, outputs, params):
     nose = read_inference(inputs.do1)["nose"]
     fits, predictions, do1 = [], [], []
     for name in study["levels"][level]:
-        effect = size_effect(study["variants"][name])
+        effect = SizeEffect.from_spec(study["variants"][name])
         ctx = context_from_files(cfg, inputs.reference, profile=profile)
         ctx.size = effect
         print(f"{level}, variant {name}: calibrating on {len(rows)} laboratory shots", flush=True)
@@ -88,14 +81,8 @@ def calibrated_context(cfg, reference_path, calibrations, level, name, where):
     """The levels' context with variant ``name`` of the scale effect and ``level``'s factor as scale_validation
     fitted it on all laboratory shots (``calibrations``: its calibration tables); ``where`` names the config entry
     that asks for it in the error when there is none."""
-    cal = calibrations[(calibrations.level == level) & (calibrations.variant == name) & (calibrations.fold == "all")]
-    if len(cal) != 1:
-        raise ValueError(f"{where}: variant {name!r} at level {level} has no calibration (fold all); build "
-                         f"figures/scale/calibration_{level}.csv with it")
-    ctx = context_from_files(cfg, reference_path)
-    ctx.size = size_effect(cfg["scale_effect"]["variants"][name])
-    setattr(ctx, FITTED[level][0], float(cal.value.iloc[0]))
-    return ctx, float(cal.value.iloc[0])
+    ctx = with_scale_effect(context_from_files(cfg, reference_path), cfg, calibrations, level, name, where)
+    return ctx, float(getattr(ctx, FITTED[level][0]))
 
 
 def similar_shots(spec, refs):
@@ -172,4 +159,4 @@ def scale_table3(inputs, outputs, params):
 def scale_fe_grid_value(inputs, outputs, params):
     """Every laboratory shot at the fe level of a mesh profile with one failure strain of the grid and one variant
     of the scale effect (a piece, committed, as the laboratory calibration's own grid: fe_laboratory_grid_value)."""
-    write_grid_piece(inputs, outputs, params, size_effect(params.cfg["scale_effect"]["variants"][params.variant]))
+    write_grid_piece(inputs, outputs, params, SizeEffect.from_spec(params.cfg["scale_effect"]["variants"][params.variant]))

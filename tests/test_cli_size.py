@@ -1,0 +1,90 @@
+"""A user's shot with the scale effect (--size): the level's factor is the study's laboratory calibration with the
+variant, the depth follows the published factors, the accuracy line is the variant's validation, the calibre range
+widens only as far as DO1 validates, and the default takes a variant only where it meets every goal."""
+import json
+import shutil
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from conftest import committed, run_cli
+
+from penetration.analytic.dop import penetration_depth
+from penetration.analytic.resistance import Target, strength_factor
+from penetration.errors import ParameterError
+from penetration.nose.geometry import Ogive
+from penetration.nose.nstar import nstar
+from penetration.shots.ladder import Context
+from penetration.shots.records import scale_effect_context
+from penetration.shots.trust import ValidatedRange, with_scale_effect_range
+from penetration.studies.scale import GOALS, goals_met, recommended_variant
+
+ROOT = Path(__file__).resolve().parents[1]
+SHOT = ("ogive", "crh=3", "diameter_m=0.14", "mass_kg=81.1", "velocity_ms=835", "fc_MPa=48",
+        "target_density_kgm3=2440")
+
+
+def calibration(level, variant):
+    from io import StringIO
+    t = pd.read_csv(StringIO(committed(f"figures/scale/calibration_{level}.csv")))
+    return float(t[(t.variant == variant) & (t.fold == "all")].value.iloc[0])
+
+
+def test_a_shot_with_the_rate_variant_takes_its_fitted_factor_and_mc2010s_factor_at_v_over_d():
+    out = run_cli("dop", *SHOT, "--size", "rate", "--json")
+    assert out.returncode == 0, out.stderr
+    rec = json.loads(out.stdout)
+    rate = 835.0 / 0.14
+    dif = 0.012 * (rate / 30e-6) ** (1.0 / 3.0)   # MC2010's cube-root branch, continued (beyond: extrapolate)
+    S = float(strength_factor(48e6, "li_chen")) * calibration("analytic", "rate") * dif
+    want = float(penetration_depth(81.1, 0.07, nstar(Ogive(3.0, 0.07)), Target(2440.0, 48e6, S), 835.0))
+    assert rec["depth_m"] == pytest.approx(want, rel=1e-9)
+    assert "with the scale effect rate (chosen (--size))" in rec["validated_accuracy"]
+
+
+def test_the_default_takes_a_variant_only_where_it_meets_every_goal():
+    from io import StringIO
+    rows = pd.read_csv(StringIO(committed("figures/scale/validation_analytic.csv"))).to_dict("records")
+    best = recommended_variant(rows)
+    out = run_cli("dop", *SHOT, "--json")
+    rec = json.loads(out.stdout)
+    if best is None:
+        assert "scale effect none (no variant meets the validation's goals" in rec["validated_accuracy"]
+        plain = json.loads(run_cli("dop", *SHOT, "--size", "none", "--json").stdout)
+        assert rec["depth_m"] == plain["depth_m"]
+    else:
+        assert f"scale effect {best} (it meets every goal" in rec["validated_accuracy"]
+
+
+def test_recommended_variant_needs_every_goal_and_prefers_the_smaller_median():
+    def row(variant, med, p90, ratio, do1):
+        return {"variant": variant, "loso_median_abs_rel_err": med, "loso_p90_abs_rel_err": p90, "split_ratio": ratio,
+                "do1_rel_error": do1}
+    rows = [row("none", 0.01, 0.02, 1.0, 0.0), row("a", 0.06, 0.19, 1.1, -0.09), row("b", 0.05, 0.19, 1.1, 0.02),
+            row("c", 0.01, 0.21, 1.0, 0.0)]
+    assert recommended_variant(rows) == "b"
+    assert not goals_met(rows[3])["loso_p90"]
+    assert recommended_variant(rows[:1] + rows[3:]) is None
+
+
+def test_the_calibre_range_widens_to_do1_only_where_the_variant_predicts_it_within_the_goal():
+    rng = ValidatedRange({"diameter": (0.0269, 0.0762), "mass": (0.9, 13.0), "fc": (23e6, 108e6),
+                          "density": (1970.0, 2370.0), "velocity": (139.0, 800.0)}, (2.0, 6.0), 25)
+    near = {"do1_rel_error": 0.9 * GOALS["do1"], "do1_diameter_m": 0.14}
+    far = {"do1_rel_error": -1.1 * GOALS["do1"], "do1_diameter_m": 0.14}
+    assert with_scale_effect_range(rng, near).bounds["diameter"] == (0.0269, 0.14)
+    assert with_scale_effect_range(rng, far) == rng and with_scale_effect_range(rng, None) == rng
+
+
+def test_a_variant_without_its_calibration_is_refused_naming_the_file(tmp_path):
+    (tmp_path / "workflow").mkdir()
+    shutil.copy(ROOT / "workflow/config.yaml", tmp_path / "workflow/config.yaml")
+    with pytest.raises(ParameterError, match=r"figures/scale/calibration_cavity\.csv is missing"):
+        scale_effect_context(Context(), tmp_path, "cavity", "rate", "full")
+    with pytest.raises(ParameterError, match=r"--profile"):
+        scale_effect_context(Context(), tmp_path, "fe", "rate", "full")
+
+
+def test_an_unknown_variant_is_refused_naming_the_allowed_ones():
+    out = run_cli("dop", *SHOT, "--size", "tides")
+    assert out.returncode == 2 and "--size" in out.stderr and "rate_fracture" in out.stderr
