@@ -67,13 +67,15 @@ def test_recommended_variant_needs_every_goal_and_prefers_the_smaller_median():
     assert recommended_variant(rows[:1] + rows[3:]) is None
 
 
-def test_the_calibre_range_widens_to_do1_only_where_the_variant_predicts_it_within_the_goal():
+def test_the_calibre_range_widens_to_do1_only_for_a_variant_that_meets_every_goal():
     rng = ValidatedRange({"diameter": (0.0269, 0.0762), "mass": (0.9, 13.0), "fc": (23e6, 108e6),
                           "density": (1970.0, 2370.0), "velocity": (139.0, 800.0)}, (2.0, 6.0), 25)
-    near = {"do1_rel_error": 0.9 * GOALS["do1"], "do1_diameter_m": 0.14}
-    far = {"do1_rel_error": -1.1 * GOALS["do1"], "do1_diameter_m": 0.14}
-    assert with_scale_effect_range(rng, near).bounds["diameter"] == (0.0269, 0.14)
-    assert with_scale_effect_range(rng, far) == rng and with_scale_effect_range(rng, None) == rng
+    good = {"loso_median_abs_rel_err": 0.9 * GOALS["loso_median"], "loso_p90_abs_rel_err": 0.9 * GOALS["loso_p90"],
+            "split_ratio": 0.99 * GOALS["split_ratio"], "do1_rel_error": 0.9 * GOALS["do1"], "do1_diameter_m": 0.14}
+    assert with_scale_effect_range(rng, good).bounds["diameter"] == (0.0269, 0.14)
+    for goal, column in (("do1", "do1_rel_error"), ("loso_p90", "loso_p90_abs_rel_err")):
+        assert with_scale_effect_range(rng, {**good, column: 1.1 * GOALS[goal]}) == rng
+    assert with_scale_effect_range(rng, None) == rng
 
 
 def test_a_variant_without_its_calibration_is_refused_naming_the_file(tmp_path):
@@ -81,8 +83,27 @@ def test_a_variant_without_its_calibration_is_refused_naming_the_file(tmp_path):
     shutil.copy(ROOT / "workflow/config.yaml", tmp_path / "workflow/config.yaml")
     with pytest.raises(ParameterError, match=r"figures/scale/calibration_cavity\.csv is missing"):
         scale_effect_context(Context(), tmp_path, "cavity", "rate", "full")
-    with pytest.raises(ParameterError, match=r"--profile"):
+    with pytest.raises(ParameterError, match=r"--profile ci"):
         scale_effect_context(Context(), tmp_path, "fe", "rate", "full")
+    with pytest.raises(ParameterError, match=r"--strength-law li_chen"):
+        scale_effect_context(Context(), tmp_path, "analytic", "rate", "full", "forrestal")
+
+
+@pytest.mark.parametrize("extra", [("--strength-scale", "0.5"), ("--failure-strain", "2"), ("--calibration", "do1")])
+def test_a_variant_with_an_override_of_its_factor_is_refused_naming_both(extra):
+    out = run_cli("dop", *SHOT, "length_m=1.0", "--model", "cavity", "--size", "rate", *extra)
+    assert out.returncode == 2 and "--size" in out.stderr and extra[0] in out.stderr
+
+
+def test_the_trajectory_level_takes_the_analytic_levels_calibration_and_validation():
+    """The trajectory level's default effects are Eq 9's: with a variant it takes the analytic level's factor and
+    returns its depth, and says the analytic validation is the one that holds."""
+    runs = {m: json.loads(run_cli("dop", *SHOT, "--model", m, "--size", "rate", "--json").stdout)
+            for m in ("analytic", "trajectory")}
+    assert runs["trajectory"]["depth_m"] == pytest.approx(runs["analytic"]["depth_m"], rel=1e-6)
+    lines = {m: r["validated_accuracy"] for m, r in runs.items()}
+    assert lines["trajectory"].replace("the trajectory level", "the analytic level") == lines["analytic"]
+    assert "leave one series out" in lines["analytic"]
 
 
 def test_an_unknown_variant_is_refused_naming_the_allowed_ones():

@@ -288,3 +288,20 @@ def test_erosion_free_rows_without_a_limit_are_judged_on_the_holes_least_squares
     depth = {**row, "quantity": "depth_m", "case": "crh3", "values_median": 5.5, "ls_low": "5.0", "ls_high": "6.0"}
     (d,) = erosion_free_depth_rows(refs, [depth], [])
     assert d.status == "deviates" and "5.000 to 6.000 m" in d.case   # the paper's 7.86 m outside the hull
+
+
+def test_do1_predicted_by_a_level_never_fitted_on_it_is_predicted_within_the_tolerance_else_deviates():
+    """DO1 as a test (figures/scale/do1_LEVEL.csv): 5.1 m measured, tolerance 5 %; a depth from a factor fitted on the
+    laboratory shots is `predicted` inside it (never `reproduced`, never `agrees-after-calibration`), `deviates`
+    outside, and the case names the level, the variant and the fitted factor."""
+    from penetration.paper.diff import AGREES, scale_do1_rows
+    refs = load_reference(REF)
+    ref = refs["table2.dop"]
+    base = {"parameter": "s_scale", "value": 0.1}
+    table = [{**base, "variant": "none", "dop_pred_m": 3.83}, {**base, "variant": "rate", "dop_pred_m": 5.1 * 1.049},
+             {**base, "variant": "rate_fracture", "dop_pred_m": 5.1 * 0.949}]
+    rows = scale_do1_rows(refs, {"cavity": table})
+    assert [r.status for r in rows] == ["deviates", "predicted", "deviates"] and ref.tol == 0.05
+    assert "predicted" in AGREES and "predicted" in STATUSES
+    assert "cavity level with the scale effect rate (s_scale 0.1 fitted on the laboratory shots; DO1 in no fit)" in rows[1].case
+    assert "without the scale effect" in rows[0].case and rows[0].paper == 5.1

@@ -99,9 +99,14 @@ def tree(tmp_path_factory):
     for name in ("Snakefile", "workflow", "src"):
         (shutil.copytree if (ROOT / name).is_dir() else shutil.copy)(ROOT / name, root / name)
     # the rule graph does not depend on the files' times: it is computed meanwhile, on the other core
-    graph = subprocess.Popen(SNAKEMAKE + ["--rulegraph"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+    graph = subprocess.Popen(SNAKEMAKE + ["--rulegraph"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                              text=True, cwd=root)
-    dry = subprocess.run(SNAKEMAKE + ["-n", "-c1", "--forceall"], capture_output=True, text=True, cwd=root, check=True)
+    try:
+        dry = subprocess.run(SNAKEMAKE + ["-n", "-c1", "--forceall"], capture_output=True, text=True, cwd=root,
+                             check=True)
+    except BaseException:
+        graph.kill()
+        raise
     # a job's benchmark record is one of its products too (accuracy_cost and sweep_figures read records)
     outputs = {f.strip() for line in (dry.stdout + dry.stderr).splitlines()
                if line.strip().startswith(("output:", "benchmark:")) for f in line.split(":", 1)[1].split(",")}
@@ -113,8 +118,8 @@ def tree(tmp_path_factory):
         (root / f).parent.mkdir(parents=True, exist_ok=True)
         (root / f).touch()
         os.utime(root / f, (now, now))
-    dot, _ = graph.communicate()
-    assert graph.returncode == 0, "snakemake --rulegraph failed"
+    dot, err = graph.communicate()
+    assert graph.returncode == 0, f"snakemake --rulegraph failed: {err[-2000:]}"
     return root, now, _descendants(dot)
 
 

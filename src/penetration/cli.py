@@ -358,15 +358,26 @@ def _sized(args, ctx):
     --model (shots.records.chosen_size; the variant and why it was chosen kept in args for the accuracy line); None
     for the analytic level without it (Eq 9 as before)."""
     from .shots.ladder import Context
-    from .shots.records import NO_SIZE, chosen_size, scale_effect_context
+    from .shots.records import AUTO_SIZE, NO_SIZE, chosen_size, scale_effect_context
     root = Path(args.root)
-    variant, why = chosen_size(root, args.model, args.size) if (root / "workflow/config.yaml").is_file() else (
-        args.size if args.size != "auto" else NO_SIZE, "no pipeline under --root")
+    if not (root / "workflow/config.yaml").is_file():
+        if args.size not in (AUTO_SIZE, NO_SIZE):
+            raise ParameterError("argument", "--size", args.size, f"{AUTO_SIZE} or {NO_SIZE} without a pipeline under "
+                                 f"--root {args.root} (a variant's calibration lives in its figures/scale/)")
+        args.size_variant = (NO_SIZE, "no pipeline under --root")
+        return ctx
+    variant, why = chosen_size(root, args.model, args.size, args.profile, args.strength_law)
     args.size_variant = (variant, why)
     if variant == NO_SIZE:
         return ctx
+    given = [name for name, on in (("--strength-scale", args.strength_scale is not None),
+                                   ("--failure-strain", args.failure_strain is not None),
+                                   (f"--calibration {args.calibration}", args.calibration != "laboratory")) if on]
+    if given:
+        raise ParameterError("argument", "--size", variant, f"{NO_SIZE} with {', '.join(given)} (a variant of the scale "
+                             "effect brings the factor its level was fitted with on the laboratory shots)")
     return scale_effect_context(ctx or Context(strength_law=args.strength_law), root, args.model, variant,
-                                args.profile)
+                                args.profile, args.strength_law)
 
 
 def _shot(args):

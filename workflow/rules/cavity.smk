@@ -41,6 +41,7 @@ rule scene_cavity:
            **scene_input("workflow/scenes/cavity/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: dop="results/scenes/cavity/{scene}.csv", histories="results/scenes/cavity/{scene}_histories.csv",
     params: rtol=config["cavity"]["rtol"], cfg=config["cavity"], hjc=config["concrete"],
+            size=size_params("workflow/scenes/cavity/{scene}.yaml", config),
     threads: 2
     resources: mem_mb=2000, runtime=20
     benchmark: "results/benchmarks/scene_cavity_{scene}.tsv"

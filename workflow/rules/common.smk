@@ -5,7 +5,7 @@ from pathlib import Path
 
 from penetration.pipeline.config import check_config, check_config_files, load_check, mesh_profiles
 from penetration.pipeline.dispatch import (fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input,
-                                          study_input, study_outputs, task, uncommitted)
+                                          size_params, study_input, study_outputs, task, uncommitted)
 from penetration.levels import LEVELS
 from penetration.pipeline.scenes import scene_names
 from penetration.tasks.reference import checked_outputs

@@ -74,7 +74,7 @@ rule fe_shot:
             fields="results/fe/{profile}/{scene}/{nose}_{velocity}_fields.csv",
             audit="results/fe/{profile}/{scene}/{nose}_{velocity}_audit.csv",
     params: cfg=lambda w: fe_cfg(w.profile), hjc=config["concrete"], profile=lambda w: w.profile, nose=lambda w: w.nose,
-            velocity=lambda w: w.velocity,
+            velocity=lambda w: w.velocity, size=size_params("workflow/scenes/fe/{scene}.yaml", config),
     # the scenes' and noses' names exactly, so that the benchmark record's name (underscores between the
     # wildcards) names one job: accuracy_cost reads these records
     wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)),

@@ -26,6 +26,8 @@ rule diff:
     params: erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
             erosion_free_calibrated=study_input("figures/fe/erosion_free/calibrated.csv"),
             eroding=study_input("figures/fe/contrast_extrapolation.csv"),
+            # DO1 predicted with and without the scale effect, per level whose study has run (rule scale_validation)
+            scale_do1={level: study_input(f"figures/scale/do1_{level}.csv") for level in ("analytic", "cavity", "fe")},
     threads: 1
     resources: mem_mb=1000, runtime=5
     benchmark: "results/benchmarks/diff.tsv"

@@ -6,7 +6,7 @@ rule scene:
            cal_do1="results/calibration/do1.json", cal_table3_calc="results/calibration/table3_calc.json",
            diameter="results/geometry/diameter_450kg.json", **scene_input("workflow/scenes/{scene}.yaml"), schema=SCENE_SCHEMA,
     output: dop="results/scenes/{scene}.csv", histories="results/scenes/{scene}_histories.csv",
-    params: rtol=config["trajectory"]["rtol"],
+    params: rtol=config["trajectory"]["rtol"], size=size_params("workflow/scenes/{scene}.yaml", config),
     threads: 1
     resources: mem_mb=1000, runtime=10
     benchmark: "results/benchmarks/scene_{scene}.tsv"

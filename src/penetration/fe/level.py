@@ -62,8 +62,9 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
     values times ``velocity_factor``), built once: the scene's concrete (concrete.configured with the scene's
     effects), the profile's settings (scene_settings: the scene's domain unless ``domain`` names one), the scene's
     target and, where the scene asks for the calibrated erosion strain, the DO1 ``calibration`` (its JSON record, at
-    the profile's element size); with the scene's scale effect (size), MC2010's rate factor at each element's rate
-    in the material and the crack band at the mesh's element size (concrete.size). Returns (spec, notes) with notes
+    the profile's element size); with the scene's scale effect (size), the failure strain the scale effect's study
+    fitted with its variant on the laboratory shots, MC2010's rate factor at each element's rate in the material and
+    the crack band at the mesh's element size (concrete.size). Returns (spec, notes) with notes
     the failure strain, its provenance and the material switches."""
     _check_table1_target(scene, refs)
     v = float(velocity)
@@ -78,7 +79,15 @@ def scene_spec(scene, nose, velocity, refs, concrete_cfg, fe_cfg, profile, expec
         calibration = None   # the record belongs to the strength scale, not to an erosion strain
     fs = scene.fe.get("erosion_strain")
     provenance = "none (no erosion: only the guards remove inverted elements)"
-    if fs == "calibrated":
+    if scene.size is not None:
+        if fs != "calibrated" or profile != scene.size_profile:
+            raise ValueError(f"{scene.name}: effect size at the fe level takes the failure strain the scale effect's "
+                             f"study fitted on the laboratory shots at the {scene.size_profile} mesh; allowed: "
+                             f"fe.erosion_strain 'calibrated' (given {fs!r}) and the {scene.size_profile} profile "
+                             f"(given {profile})")
+        fs = scene.size_calibration
+        provenance = f"fitted on the laboratory shots with the scale effect ({scene.provenance['size']})"
+    elif fs == "calibrated":
         if calibration is None:
             raise ValueError(f"{scene.name}: erosion_strain 'calibrated' needs the DO1 calibration at the {profile} mesh")
         if not math.isclose(calibration["element_size"], settings.element_size):

@@ -20,6 +20,8 @@ COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "statu
 # each status and what it says, in the order the counts are shown
 STATUS_MEANINGS = {
     "reproduced": "a computed number (depth, deceleration, share, contrast) within the stated tolerance, nothing fitted",
+    "predicted": "the paper's measured shot (DO1) within tolerance, from a level whose one factor was fitted on other "
+                 "shots (the laboratory series), never on it",
     "geometry": "an exact result of the nose's shape (N*, mass, a shape rate) within tolerance",
     "ordering": "a sign, ordering or axis bound the paper states, which ours satisfies (no magnitude compared)",
     "paper-consistent": "the paper checked against its own numbers, which agree (nothing of ours involved)",
@@ -33,7 +35,7 @@ STATUS_MEANINGS = {
 }
 STATUSES = tuple(STATUS_MEANINGS)
 # the statuses of a row that holds: a rebuild must keep them (tasks.reference.reproduction_problems)
-AGREES = ("reproduced", "geometry", "ordering", "paper-consistent", "agrees-after-calibration")
+AGREES = ("reproduced", "predicted", "geometry", "ordering", "paper-consistent", "agrees-after-calibration")
 
 
 @dataclass(frozen=True)
@@ -326,6 +328,24 @@ def experiment_rows(refs, do1_stated, do1_calibrated_S):
     ref = refs["table2.dop"]
     return [compare(ref, do1_stated, case="DO1 (trajectory; S = 72 fc^-0.5)"),
             _row(ref, "dop", f"DO1 (S calibrated to it: S = {do1_calibrated_S:.4g})", ref.value, "not-derivable")]
+
+
+def scale_do1_rows(refs, tables):
+    """DO1 as a test instead of a calibration: its depth predicted at each level with and without each variant of the
+    scale effect (``tables``: level -> the rows of figures/scale/do1_LEVEL.csv), the level's one factor fitted on
+    the laboratory shots with the variant; DO1 is in no fit, so a depth within tolerance is ``predicted``."""
+    ref = refs["table2.dop"]
+    rows = []
+    for level, table in tables.items():
+        for r in table:
+            ours = float(r["dop_pred_m"])
+            effect = "without the scale effect" if r["variant"] == "none" else f"with the scale effect {r['variant']}"
+            case = (f"DO1 predicted at the {level} level {effect} ({r['parameter']} {float(r['value']):.4g} fitted on "
+                    "the laboratory shots; DO1 in no fit)")
+            ok = holds(ref.relation, ref.value, ours, ref.tol)
+            rows.append(Row(ref.item, ref.quantity, case, ref.value, ours, _rel(ref.value, ours), ref.tol,
+                            "predicted" if ok else "deviates"))
+    return rows
 
 
 def ordering_rows(refs, sec22):

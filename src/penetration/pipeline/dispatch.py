@@ -142,6 +142,24 @@ def scene_input(path) -> dict:
     return {"scene": path, "scene_bases": scene_files(path)[1:]}
 
 
+def size_params(path, config):
+    """A scene rule's ``size`` param (``path``: the scene file, with wildcards): None for a scene without the scale
+    effect, so that its job never depends on the study; else what scenes.sized needs, the config's variants and S law,
+    the study's fe mesh profile and its calibration at the scene's level as a committed study output (study_input: a
+    changed calibration reruns the job)."""
+    from .scenes import SIZE, SIZE_LEVEL, scene_data
+
+    def params(w):
+        data = scene_data(path.format(**dict(w.items())))
+        if SIZE not in data.get("effects", []):
+            return None
+        study = config["scale_effect"]
+        return {"variants": study["variants"], "law": config["validation"]["strength_law"],
+                "fe_profile": study["fe_profile"],
+                "calibration": study_input(f"figures/scale/calibration_{SIZE_LEVEL[data['level']]}.csv")}
+    return params
+
+
 def load_studies(folder, schema_path) -> dict:
     """Study grids by name: every ``folder/NAME.yaml``, each checked against the schema's definition NAME."""
     schema = json.loads(Path(schema_path).read_text())

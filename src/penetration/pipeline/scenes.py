@@ -27,7 +27,6 @@ from ..analytic.resistance import Target, strength_factor
 from ..analytic.trajectory import EFFECTS, EXCLUDES
 from ..concrete.effects import MATERIAL_EFFECTS
 from ..concrete.size import SizeEffect, resistance_factor
-from ..errors import ParameterError
 from ..levels import WHAT
 from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from . import config
@@ -69,7 +68,10 @@ class Scene:
     provenance: dict = field(default_factory=dict)
     material: dict = field(default_factory=dict)
     fe: dict = field(default_factory=dict)
-    size: SizeEffect | None = None  # the scale effect (effect size), None: scale-free
+    size_variant: str | None = None  # the scale effect's variant the scene names (effect size), None: scale-free
+    size: SizeEffect | None = None   # that variant's effect, set with its calibration by ``sized``
+    size_calibration: float | None = None  # the level's factor the study fitted with it on the laboratory shots
+    size_profile: str | None = None        # the fe mesh profile that factor belongs to (the fe level's)
 
     def target_at(self, radius, velocity) -> Target:
         """The closed forms' target of a shot of this scene at nose ``radius`` and striking ``velocity``: S times
@@ -199,6 +201,9 @@ def check_level(data, where="scene"):
     for key, needs in settings.items():
         if key in data and needs not in effects:
             raise SceneError(f"{where}: {key} is set but effect {needs} is not listed; allowed: list {needs} or drop {key}")
+    if SIZE in effects and SIZE not in data:
+        raise SceneError(f"{where}: effect size is listed without its settings; allowed: size: {{variant: NAME}}, a "
+                         "variant of the config's scale_effect.variants")
     if "friction" in effects and not data.get("friction", 0.0) > 0:
         raise SceneError(f"{where}: effect friction is listed with friction = {data.get('friction', 0.0)}; "
                          "allowed: friction > 0 (a coefficient up to 1)")
@@ -256,28 +261,50 @@ def resolve(name, data, inferred_noses, calibrations, diameters):
         S = strength["value"]
         prov["S"] = "given"
     noses = {n: _nose(spec, radius, inferred_noses) for n, spec in data["noses"].items()}
-    size = None
-    if SIZE in data["effects"]:
-        size = size_effect(data.get(SIZE, {}), f"{name}: size")
-        prov[SIZE] = describe_size(size)
+    variant = data[SIZE]["variant"] if SIZE in data["effects"] else None
     return Scene(name, data["projectile"]["mass"], radius, noses, Target(t["rho"], t["fc"], S),
                  velocities(data["velocities"], f"{name}: velocities"), data["level"],
                  tuple(e for e in data["effects"] if e != SIZE), data.get("friction", 0.0), data.get("ramp_depth"), prov,
-                 {k: data[k] for k in ("lock", "tension") if k in data}, dict(data.get("fe", {})), size)
+                 {k: data[k] for k in ("lock", "tension") if k in data}, dict(data.get("fe", {})), variant)
 
 
-def size_effect(spec, where="size") -> SizeEffect:
-    """The scale effect of a scene's ``size`` settings (defaults: concrete.size.SizeEffect's)."""
-    try:
-        return SizeEffect.from_spec(spec)
-    except ParameterError as err:
-        raise SceneError(f"{where}: {err}") from err
+# the level whose factor a scene with the scale effect takes from the study: the trajectory level's closed-form
+# effects take the analytic level's factor on S
+SIZE_LEVEL = {"analytic": "analytic", "trajectory": "analytic", "cavity": "cavity", "fe": "fe"}
 
 
-def describe_size(size: SizeEffect) -> str:
-    """The scale effect in words, for a result's provenance."""
-    return (f"{'+'.join(size.mechanisms)} (rate factor beyond 300 1/s: {size.beyond}; largest aggregate "
-            f"{size.aggregate * 1e3:g} mm, D0 = {size.lambda0:g} d_a)")
+def sized(scene: Scene, spec) -> Scene:
+    """The scene with the scale effect of the variant it names and the factor the scale effect's study fitted with
+    it on the laboratory shots at its level (``spec``, a rule's size params: ``variants`` and ``law`` of the config,
+    the study's ``fe_profile`` and its calibration table ``calibration``, rows as dicts). At the analytic and
+    trajectory levels that factor multiplies S, which must then be the law the study fitted it on; the cavity and fe
+    levels' tasks use it in place of their DO1 calibrations. Refused, naming the field, where the variant is not
+    calibrated at the level or the scene would drop part of it (the rate mechanism lives in HJC's strain_rate term)."""
+    where = f"{scene.name}: size.variant"
+    variant, at = scene.size_variant, SIZE_LEVEL[scene.level]
+    if variant not in spec["variants"]:
+        raise SceneError(f"{where}: {variant!r}; allowed: one of {sorted(spec['variants'])} (scale_effect.variants)")
+    effect = SizeEffect.from_spec(spec["variants"][variant])
+    if effect is None:
+        raise SceneError(f"{where}: {variant!r} is the study's variant without the effect; allowed: drop effect size")
+    rows = [r for r in spec["calibration"] if r["level"] == at and r["variant"] == variant and r["fold"] == "all"]
+    if len(rows) != 1:
+        raise SceneError(f"{where}: {variant!r} has no calibration at the {at} level; allowed: a variant of "
+                         f"figures/scale/calibration_{at}.csv (snakemake -c2 figures/scale/calibration_{at}.csv)")
+    value = float(rows[0]["value"])
+    prov = {**scene.provenance, SIZE: f"{variant}: {'+'.join(effect.mechanisms)}, the {at} level's factor {value:.6g} "
+                                      f"fitted with it on the laboratory shots (figures/scale/calibration_{at}.csv)"}
+    target = scene.target
+    if at == "analytic":
+        if scene.provenance.get("S") != f"law {spec['law']}":
+            raise SceneError(f"{scene.name}: target.strength: {scene.provenance.get('S')} with effect size; allowed: "
+                             f"{{law: {spec['law']}}} (the study fitted its factor on that law's S)")
+        target = dataclasses.replace(target, S=target.S * value)
+    elif "rate" in effect.mechanisms and "strain_rate" not in scene.effects:
+        raise SceneError(f"{scene.name}: effects: size (variant {variant}, whose rate mechanism acts through HJC's "
+                         "strain-rate term) without strain_rate; allowed: list strain_rate too")
+    return dataclasses.replace(scene, target=target, size=effect, size_calibration=value, provenance=prov,
+                               size_profile=spec["fe_profile"] if at == "fe" else None)
 
 
 def scene_name(path):

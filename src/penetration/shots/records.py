@@ -92,19 +92,55 @@ NO_SIZE = "none"
 AUTO_SIZE = "auto"
 
 
-def chosen_size(root, level, size) -> tuple[str, str]:
+# The level whose calibration and validation a shot with the scale effect takes: the trajectory level's effects
+# are the closed form's (it returns Eq 9's depth), so it takes the analytic level's.
+SIZE_LEVEL = {"analytic": "analytic", "trajectory": "analytic", "cavity": "cavity", "fe": "fe"}
+
+
+def size_problem(cfg, root, level, variant, profile="full", strength_law=None):
+    """Why a shot at ``level`` cannot run with ``variant`` of the scale effect (None: it can): a variant the config
+    does not have, a level the study did not calibrate it at, another S law than the study's, another fe mesh than
+    the study's, or a calibration not built under ``root``."""
+    study = cfg["scale_effect"]
+    at = SIZE_LEVEL[level]
+    calibration = SCALE_CALIBRATION.format(level=at)
+    if variant not in study["variants"]:
+        return f"one of {[AUTO_SIZE, *sorted(study['variants'])]} (the config's scale_effect.variants)"
+    if variant not in study["levels"].get(at, []):
+        return (f"a variant the scale effect's study calibrates at the {at} level: "
+                f"{study['levels'].get(at, [])} (workflow/config.yaml, scale_effect.levels)")
+    law = cfg["validation"]["strength_law"]
+    if at == "analytic" and strength_law not in (None, law):
+        return f"--strength-law {law} with the scale effect (its factor on S was fitted on {law}'s S)"
+    if level == "fe" and profile != study["fe_profile"]:
+        return f"--profile {study['fe_profile']} with the scale effect (its failure strain was fitted at that mesh)"
+    path = Path(root) / calibration
+    if not path.is_file():
+        return f"a calibrated variant: {calibration} is missing under {root} (snakemake -c2 {calibration})"
+    table = pd.read_csv(path)
+    if not ((table.level == at) & (table.variant == variant) & (table.fold == "all")).any():
+        return f"a variant {calibration} has (snakemake -c2 {calibration} rebuilds it with the config's variants)"
+    return None
+
+
+def chosen_size(root, level, size, profile="full", strength_law=None) -> tuple[str, str]:
     """(the variant of the scale effect a shot at ``level`` runs with, why): ``size`` itself, or for ``auto`` the
-    variant that meets every goal of the committed validation at that level (studies.scale.recommended_variant),
-    else none."""
+    variant that meets every goal of the committed validation at the level (studies.scale.recommended_variant)
+    where it can run there (size_problem), else none."""
     if size != AUTO_SIZE:
         return size, "chosen (--size)"
-    path = Path(root) / SCALE_VALIDATION.format(level=level)
+    at = SIZE_LEVEL[level]
+    validation = SCALE_VALIDATION.format(level=at)
+    path = Path(root) / validation
     if not path.is_file():
-        return NO_SIZE, f"no validation of the scale effect at level {level} ({SCALE_VALIDATION.format(level=level)})"
+        return NO_SIZE, f"no validation of the scale effect at the {at} level ({validation})"
     best = recommended_variant(pd.read_csv(path).to_dict("records"))
     if best is None:
-        return NO_SIZE, f"no variant meets the validation's goals at level {level} ({SCALE_VALIDATION.format(level=level)})"
-    return best, f"it meets every goal of the validation at level {level} ({SCALE_VALIDATION.format(level=level)})"
+        return NO_SIZE, f"no variant meets the validation's goals at the {at} level ({validation})"
+    problem = size_problem(load_with(Path(root) / "workflow/config.yaml", {}), root, level, best, profile, strength_law)
+    if problem is not None:
+        return NO_SIZE, f"{best} meets every goal at the {at} level ({validation}) but needs {problem}"
+    return best, f"it meets every goal of the validation at the {at} level ({validation})"
 
 
 def with_scale_effect(ctx: Context, cfg, calibrations, level, variant, where="--size") -> Context:
@@ -112,12 +148,12 @@ def with_scale_effect(ctx: Context, cfg, calibrations, level, variant, where="--
     laboratory shot (``calibrations``: the study's calibration table, its fold ``all``); ``where`` names the setting
     in the errors. The factor is a calibration on the laboratory shots, and the context's source says so."""
     variants = cfg["scale_effect"]["variants"]
+    owner = "argument" if where.startswith("-") else "config"
     if variant not in variants:
-        raise ParameterError("argument" if where.startswith("-") else "config", where, variant,
-                             f"one of {sorted(variants)} (the config's scale_effect.variants)")
+        raise ParameterError(owner, where, variant, f"one of {sorted(variants)} (the config's scale_effect.variants)")
     cal = calibrations[(calibrations.level == level) & (calibrations.variant == variant) & (calibrations.fold == "all")]
     if len(cal) != 1:
-        raise ParameterError("argument" if where.startswith("-") else "config", where, variant,
+        raise ParameterError(owner, where, variant,
                              f"a variant calibrated at level {level}: {SCALE_CALIBRATION.format(level=level)} has "
                              f"{sorted(set(calibrations.variant[calibrations.level == level]))} (build it with "
                              f"snakemake -c2 {SCALE_CALIBRATION.format(level=level)})")
@@ -130,29 +166,26 @@ def with_scale_effect(ctx: Context, cfg, calibrations, level, variant, where="--
     return ctx
 
 
-def scale_effect_context(ctx: Context, root, level, variant, profile) -> Context:
+def scale_effect_context(ctx: Context, root, level, variant, profile="full", strength_law=None) -> Context:
     """``ctx`` (the pipeline's, under ``root``) with the scale effect's ``variant`` and its calibration at ``level``
-    from the committed study (with_scale_effect); ``none`` leaves it as it is. The fe level's factor belongs to the
-    study's mesh profile, which ``profile`` must be."""
+    (the analytic level's for the trajectory level, SIZE_LEVEL) from the committed study (with_scale_effect);
+    ``none`` leaves it as it is. Refused, naming what it needs, where size_problem finds a problem."""
     if variant == NO_SIZE:
         return ctx
     root = Path(root)
     cfg = load_with(root / "workflow/config.yaml", {})
-    if level == "fe" and profile != cfg["scale_effect"]["fe_profile"]:
-        raise ParameterError("argument", "--profile", profile, f"{cfg['scale_effect']['fe_profile']} with --size at the "
-                             "fe level (the scale effect's failure strain was fitted at that mesh)")
-    path = root / SCALE_CALIBRATION.format(level=level)
-    if not path.is_file():
-        raise ParameterError("argument", "--size", variant, f"none: the scale effect at level {level} is not calibrated "
-                             f"under {root} ({path.relative_to(root)} is missing; snakemake -c2 "
-                             f"{path.relative_to(root)})")
-    return with_scale_effect(ctx, cfg, pd.read_csv(path), level, variant)
+    problem = size_problem(cfg, root, level, variant, profile, strength_law)
+    if problem is not None:
+        raise ParameterError("argument", "--size", variant, problem)
+    at = SIZE_LEVEL[level]
+    return with_scale_effect(ctx, cfg, pd.read_csv(root / SCALE_CALIBRATION.format(level=at)), at, variant)
 
 
 def scale_effect_accuracy(root, level, variant):
     """The validation of ``variant`` at ``level`` (a row of figures/scale/validation_LEVEL.csv as a dict, with DO1's
     calibre from the reference as ``do1_diameter_m``), or None."""
     root = Path(root)
+    level = SIZE_LEVEL[level]
     path = root / SCALE_VALIDATION.format(level=level)
     if variant == NO_SIZE or not path.is_file():
         return None

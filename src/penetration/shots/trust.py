@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-from ..studies.scale import GOALS, goals_met
+from ..studies.scale import goals_met
 
 # shot quantity (SI, as levels.UserShot holds it) -> (development shots' CSV column, its SI factor, label, unit
 # shown, the unit's factor from SI)
@@ -77,9 +77,9 @@ def warnings(shot, rng: ValidatedRange) -> list[str]:
 
 def with_scale_effect_range(rng: ValidatedRange, row) -> ValidatedRange:
     """The validated range of a level run with a variant of the scale effect (``row``: its validation, with DO1's
-    calibre): the calibres widened up to DO1's where the variant predicts DO1, which no fit has seen, within the
-    validation's goal; else the development shots' range."""
-    if row is None or not abs(float(row["do1_rel_error"])) <= GOALS["do1"]:
+    calibre): the calibres widened up to DO1's where the variant meets every goal of the validation (studies.scale:
+    among them DO1, which no fit has seen, predicted within 10 %); else the development shots' range."""
+    if row is None or not all(goals_met(row).values()):
         return rng
     lo, hi = rng.bounds["diameter"]
     return dataclasses.replace(rng, bounds={**rng.bounds, "diameter": (lo, max(hi, float(row["do1_diameter_m"])))})
@@ -91,7 +91,7 @@ def scale_effect_line(variant, why, row) -> str:
     if variant == "none":
         return f"scale effect none ({why})"
     if row is None:
-        return f"scale effect {variant} ({why}); not validated at this level"
+        return f"scale effect {variant} ({why}), which the scale effect's study has not validated at this level"
     met = goals_met(row)
     return (f"scale effect {variant} ({why}): leave one series out on {int(row['loso_shots'])} laboratory shots, "
             f"median |error| {100 * float(row['loso_median_abs_rel_err']):.0f} %, 90th percentile "

@@ -52,8 +52,14 @@ def goals_met(row) -> dict:
             "do1": abs(float(row["do1_rel_error"])) <= GOALS["do1"]}
 
 
+def best_variant(rows):
+    """The row (a dict of the validation summary) of the smallest held-out median |error| among ``rows``, None for
+    none."""
+    return min(rows, key=lambda r: float(r["loso_median_abs_rel_err"])) if rows else None
+
+
 def recommended_variant(rows):
     """The variant of the effect a user's shot gets by default: among the validation summary's rows (dicts) with
     the effect that meet every goal, the one of the smallest held-out median |error|; None where none does."""
-    good = [r for r in rows if r["variant"] != "none" and all(goals_met(r).values())]
-    return min(good, key=lambda r: float(r["loso_median_abs_rel_err"]))["variant"] if good else None
+    best = best_variant([r for r in rows if r["variant"] != "none" and all(goals_met(r).values())])
+    return best["variant"] if best else None

@@ -106,16 +106,18 @@ def scene_cavity(inputs, outputs, params):
     The material effects strain_rate, damage and strength_cap switch the HJC
     terms; a scene that turns any of them off (or picks another lock or
     tension convention) gets its own sigma_n table at the calibrated
-    strength scale. So does a scene with the scale effect (size): its rate
-    mechanism is MC2010's factor at each point's rate in the material, its
-    fracture mechanism Bazant's factor at the scene's calibre on the strength
-    scale (concrete.size), as at the ladder's cavity level.
+    strength scale. So does a scene with the scale effect (size): the
+    strength scale the scale effect's study fitted with its variant on the
+    laboratory shots in place of DO1's, times Bazant's factor at the scene's
+    calibre (its fracture mechanism), and MC2010's factor at each point's rate
+    in the material (its rate mechanism), as at the ladder's cavity level.
     """
-    sc = scene_from_inputs(inputs, CAVITY, size=True)
+    sc = scene_from_inputs(inputs, CAVITY, size=getattr(params, "size", None))
     switches = concrete.material_switches(sc.effects, sc.material, params.hjc)
     if switches or sc.size is not None:
         refs, cfg, mesh, controls, scale = calibrated_context(inputs, params)
-        scale *= fracture_factor(sc.size, 2.0 * sc.radius)
+        if sc.size is not None:   # the strength scale fitted with the variant on the laboratory shots, not DO1's
+            scale = sc.size_calibration * fracture_factor(sc.size, 2.0 * sc.radius)
         mat = with_rate_law(concrete.configured(refs, params.hjc, strength_scale=scale, **switches), sc.size)
         table, _ = sigma_table(mat, cfg["velocities"], sc.radius, mesh, controls)
         print(f"own sigma_n table for switches {switches}" + (f", scale effect {sc.provenance['size']}" if sc.size
@@ -135,7 +137,8 @@ def scene_cavity(inputs, outputs, params):
                          # beyond the projectile's yield strength the rigid-body assumption fails
                          "peak_nose_stress": float(table(v * steepest)),
                          "peak_normal_velocity": float(v * steepest),  # the fastest v_n the nose samples
-                         "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0})
+                         "work_error": tr.work / (0.5 * sc.mass * v * v) - 1.0,
+                         **({"size": sc.size_variant, "size_calibration": sc.size_calibration} if sc.size else {})})
             hist.append(pd.DataFrame({"nose": name, "velocity": v, "t": tr.t, "z": tr.z, "v": tr.v,
                                       "deceleration": tr.deceleration}))
     write_csv(pd.DataFrame(rows), outputs.dop)

@@ -2,8 +2,8 @@
 values of the projectile and the DO1 shot, and the committed rows of the DO1 calibrations."""
 from __future__ import annotations
 
-from ..pipeline.io import load_json, read_inference
-from ..pipeline.scenes import SceneError, read_scene, resolve, scene_name
+from ..pipeline.io import committed_study, load_json, read_inference
+from ..pipeline.scenes import SceneError, read_scene, resolve, scene_name, sized
 
 CALIBRATIONS = ("do1", "table3_calc")
 PLAIN = ("analytic", "trajectory")  # the levels of workflow/scenes/*.yaml
@@ -30,15 +30,12 @@ def calibration_row(cal: dict, value_key: str, source: str) -> dict:
             "nose": data["nose"], "source": source}
 
 
-# the tasks that apply a scene's scale effect (effect size); every other task refuses such a scene
-SIZE_TASKS = ("scene", "scene_cavity", "fe_shot", "fe_realisation")
-
-
-def scene_from_inputs(inputs, levels, placeholder_diameter=None, size=False):
+def scene_from_inputs(inputs, levels, placeholder_diameter=None, size=None):
     """The rule's scene (``inputs.scene``) resolved with the inferred noses, calibrations and diameter it names.
 
-    ``levels``: the model levels the calling rule runs; a scene of another level is refused. ``size``: whether the
-    calling task applies the scale effect; a scene that lists it is refused by a task that would ignore it.
+    ``levels``: the model levels the calling rule runs; a scene of another level is refused. ``size``: the rule's
+    size param (dispatch.size_params) where its task applies the scale effect: a scene that lists the effect gets
+    its variant and calibration (scenes.sized); a task without it refuses such a scene rather than ignore it.
     ``placeholder_diameter`` stands in for the inferred 450 kg diameter in the
     rule that infers it (only the scale-free N* of its noses is used there).
     """
@@ -48,7 +45,10 @@ def scene_from_inputs(inputs, levels, placeholder_diameter=None, size=False):
     if hasattr(inputs, "diameter"):
         diam["diameter_450kg"] = load_json(inputs.diameter)
     sc = resolve(scene_name(inputs.scene), read_scene(inputs.scene, inputs.schema, levels), noses, cal, diam)
-    if sc.size is not None and not size:
+    if sc.size_variant is None:
+        return sc
+    if not size:
         raise SceneError(f"{inputs.scene}: effects: size is listed, but this rule's task does not apply the scale "
-                         f"effect; allowed: a scene of the rules {', '.join(SIZE_TASKS)} (or drop size)")
-    return sc
+                         "effect; allowed: drop size, or run the scene through its level's scene rule (scene, "
+                         "scene_cavity, fe_shot)")
+    return sized(sc, {**size, "calibration": committed_study(size["calibration"]).to_dict("records")})

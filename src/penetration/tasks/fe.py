@@ -137,7 +137,7 @@ def scene_shot(inputs, params, velocity_factor=1.0, domain=None):
     """Run one shot of an FE scene (params.nose at params.velocity x velocity_factor; ``domain``: 'window' or 'whole',
     None: the scene's fe.domain); returns (summary, result, spec, scene)."""
     refs = reference.load_reference(inputs.reference)
-    sc = scene_from_inputs(inputs, FE, size=True)
+    sc = scene_from_inputs(inputs, FE, size=getattr(params, "size", None))
     cfg = params.cfg
     v = float(params.velocity)
     expected = expected_depth(sc.noses[params.nose], sc.mass, v, sc.target.fc, sc.target.rho)
@@ -155,7 +155,8 @@ def scene_shot(inputs, params, velocity_factor=1.0, domain=None):
     if sc.fe.get("strength_scale") == "calibrated":
         summary.update(strength_scale=notes["strength_scale"], strength_scale_provenance=notes["strength_scale_provenance"])
     if sc.size is not None:
-        summary.update(size=sc.provenance["size"], efmin=spec.material.efmin, rate_law=spec.material.rate_law)
+        summary.update(size=sc.provenance["size"], efmin=spec.material.efmin, rate_law=spec.material.rate_law,
+                       size_calibration=sc.size_calibration)
     return summary, r, spec, sc
 
 
@@ -170,7 +171,7 @@ def fe_shot(inputs, outputs, params):
     try:
         summary, r, spec, sc = scene_shot(inputs, params)
     except Unstable as stop:
-        sc = scene_from_inputs(inputs, FE, size=True)
+        sc = scene_from_inputs(inputs, FE, size=getattr(params, "size", None))
         if sc.fe.get("formulation") != "erosion_free":
             raise
         print(f"stopped: {stop}", flush=True)
@@ -258,7 +259,7 @@ def realised_shot(inputs, outputs, params, what, step_key):
         summary, r, spec, sc = scene_shot(inputs, params, factor)
         final = float(r.histories["velocity"][-1])
     except Unstable as stop:
-        sc = scene_from_inputs(inputs, FE, size=True)
+        sc = scene_from_inputs(inputs, FE, size=getattr(params, "size", None))
         if sc.fe.get("formulation") != "erosion_free":
             raise
         print(f"stopped: {stop}", flush=True)

@@ -95,7 +95,9 @@ def diff(inputs, outputs, params):
                                           pd.read_csv(inputs.contrast_table).to_dict("records"))
             + diff_rows.erosion_free_depth_rows(refs, committed_study(params.erosion_free).to_dict("records"),
                                                 committed_study(params.erosion_free_calibrated).to_dict("records"))
-            + verdict_diff_rows(pd.read_csv(inputs.verdict)))
+            + verdict_diff_rows(pd.read_csv(inputs.verdict))
+            + diff_rows.scale_do1_rows(refs, {level: committed_study(spec).to_dict("records")
+                                              for level, spec in params.scale_do1.items() if spec["sha256"] != "missing"}))
     frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=diff_rows.COLUMNS)
     write_csv(frame, outputs.diff)
     findings = pd.read_csv(inputs.findings).to_dict("records")

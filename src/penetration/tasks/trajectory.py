@@ -16,8 +16,8 @@ from .common import PLAIN, scene_from_inputs
 
 
 def _dop_rows(sc, radius_case="chosen"):
-    """Eq 9's depth of every nose and velocity; with the scale effect, at each shot's own S (Scene.target_at) and
-    with its factor on S as a column."""
+    """Eq 9's depth of every nose and velocity; with the scale effect, at each shot's own S (Scene.target_at: the
+    law's S times the study's factor, size_calibration, times the effect's factor at the shot, size_factor)."""
     rows = []
     for name, nose in sc.noses.items():
         n = nstar(nose)
@@ -32,7 +32,7 @@ def _dop_rows(sc, radius_case="chosen"):
             di = float(penetration_depth(sc.mass, nose.radius, n, target, v))
             rows.append({"scene": sc.name, "nose": name, "radius_case": radius_case, "radius": nose.radius, "nstar": n,
                          "S": target.S, "velocity": v, "dop": di, "dop_over_d": di / (2 * nose.radius),
-                         "size_factor": target.S / sc.target.S})
+                         "size_factor": target.S / sc.target.S, "size_calibration": sc.size_calibration})
     return rows
 
 
@@ -55,7 +55,7 @@ def _histories(sc, radius_case, rtol):
 def scene(inputs, outputs, params):
     """DOP of every nose and velocity of a scene; histories at trajectory level (with the scene's scale effect where
     it lists one)."""
-    sc = scene_from_inputs(inputs, PLAIN, size=True)
+    sc = scene_from_inputs(inputs, PLAIN, size=getattr(params, "size", None))
     variants = [("chosen", sc)]
     if "radius" in sc.provenance:
         lo, hi = load_json(inputs.diameter)["interval"]
