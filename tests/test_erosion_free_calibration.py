@@ -187,7 +187,7 @@ def test_a_stopped_erosion_free_shot_is_recorded_and_a_stopped_eroding_shot_fail
 
     fe = {"target": "semi_infinite", "formulation": formulation, "pilot_hole": 0.125}
     monkeypatch.setattr(tasks_fe, "scene_shot", stop)
-    monkeypatch.setattr(tasks_fe, "scene_from_inputs", lambda inputs, levels: SimpleNamespace(name="s", mass=81.1, fe=fe))
+    monkeypatch.setattr(tasks_fe, "scene_from_inputs", lambda inputs, levels, size=None: SimpleNamespace(name="s", mass=81.1, fe=fe))
     outputs = SimpleNamespace(**{k: str(tmp_path / f"{k}.csv") for k in ("histories", "fields", "audit")},
                               json=str(tmp_path / "shot.json"))
     params = SimpleNamespace(cfg=_fe_cfg(0.07 / 16), profile="free1600", nose="crh3", velocity="1200")
