@@ -316,9 +316,9 @@ rule sweep:
 
 
 # The scale effect at one level (a study): its one factor calibrated on the laboratory shots with each variant of
-# config scale_effect (concrete/size.py) and without it, scored by leaving each series out, and DO1 predicted. The fe
-# level at scale_effect.fe_profile reads its grids in committed pieces (the variant none: the laboratory
-# calibration's own grid).
+# config scale_effect (concrete/size.py) and without it, scored by leaving each series out, and DO1 predicted. The
+# cavity level and the fe level at scale_effect.fe_profile read their grids in committed pieces, one per variant and
+# grid value (the variant none: the laboratory calibration's own grid).
 SCALE = config["scale_effect"]
 SCALE_FE_PROFILE = SCALE["fe_profile"]
 SCALE_PIECE = "figures/scale/fe_{profile}/{variant}/fs_{value}.csv"
@@ -331,14 +331,30 @@ def scale_fe_pieces(variant):
     return [SCALE_PIECE.format(profile=SCALE_FE_PROFILE, variant=variant, value=v) for v in FE_LAB_GRID]
 
 
-SCALE_FE_GRID = {name: scale_fe_pieces(name) for name in SCALE["levels"].get("fe", [])}
+SCALE_CAVITY_PIECE = "figures/scale/cavity/{variant}/s_{value}.csv"
+CAVITY_LAB_GRID = [f"{v:g}" for v in config["validation"]["laboratory"]["strength_scales"]]
+
+
+def scale_cavity_pieces(variant):
+    """The committed grid pieces of the cavity level's calibration with one variant (none: the laboratory
+    calibration's own grid and its timing record)."""
+    if variant == "none":
+        return {"table": "figures/calibration_cavity_laboratory_grid.csv",
+                "timing": "figures/timing/calibration_cavity_laboratory.csv"}
+    return [SCALE_CAVITY_PIECE.format(variant=variant, value=v) for v in CAVITY_LAB_GRID]
+
+
+SCALE_GRIDS = {"fe": {name: scale_fe_pieces(name) for name in SCALE["levels"].get("fe", [])},
+               "cavity": {name: scale_cavity_pieces(name) for name in SCALE["levels"].get("cavity", [])}}
 SCALE_FE_VALUES = "|".join(v.replace(".", r"\.") for v in FE_LAB_GRID)
+SCALE_CAVITY_VALUES = "|".join(v.replace(".", r"\.") for v in CAVITY_LAB_GRID)
 SCALE_VARIANTS = "|".join(n for n in SCALE["variants"] if n != "none")
 
 
-def scale_fe_missing(w):
-    """The fe level's grid pieces not on disk yet (built first); none at the other levels."""
-    return uncommitted([p for ps in SCALE_FE_GRID.values() for p in ps])(w) if w.level == "fe" else []
+def scale_grid_missing(w):
+    """A level's grid pieces not on disk yet (built first); none at the analytic level."""
+    pieces = [p for ps in SCALE_GRIDS.get(w.level, {}).values() for p in (ps.values() if isinstance(ps, dict) else ps)]
+    return uncommitted(pieces)(w)
 
 
 def scale_cfg(w):
@@ -349,11 +365,11 @@ def scale_cfg(w):
 
 rule scale_validation:
     input: **task("tasks.scale"), shots=config["validation"]["shots"], reference=config["reference"],
-           do1="results/geometry/double_ogive_table4.json", fe_grid=scale_fe_missing,
+           do1="results/geometry/double_ogive_table4.json", grid=scale_grid_missing,
     output: csv="figures/scale/calibration_{level}.csv", predictions="figures/scale/predictions_{level}.csv",
             summary="figures/scale/validation_{level}.csv", do1="figures/scale/do1_{level}.csv",
     params: cfg=scale_cfg, shots_path=config["validation"]["shots"], shot=config["calibration"]["do1"],
-            level=lambda w: w.level, fe_grid=lambda w: SCALE_FE_GRID if w.level == "fe" else {},
+            level=lambda w: w.level, grids=lambda w: SCALE_GRIDS.get(w.level, {}),
     wildcard_constraints: level="analytic|cavity|fe"
     threads: 2
     resources: mem_mb=2000, runtime=120
@@ -376,6 +392,23 @@ rule scale_fe_grid_value:
     resources: mem_mb=2000, runtime=60
     benchmark: "results/benchmarks/scale_fe_grid_value_{profile}_{variant}_{value}.tsv"
     log: "results/logs/scale_fe_grid_value_{profile}_{variant}_{value}.log",
+    script: "../scripts/run_task.py"
+
+
+SCALE_CAVITY_PIECE_INPUTS = record_inputs("tasks.scale", SCALE_CAVITY_PIECE,
+                                          data=lambda w: [config["validation"]["shots"], config["reference"]])
+
+
+rule scale_cavity_grid_value:
+    input: **SCALE_CAVITY_PIECE_INPUTS,
+    output: csv=SCALE_CAVITY_PIECE,
+    params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", "scale_effect"), value=lambda w: float(w.value),
+            variant=lambda w: w.variant,
+    wildcard_constraints: value=SCALE_CAVITY_VALUES, variant=SCALE_VARIANTS,
+    threads: 2
+    resources: mem_mb=2000, runtime=20
+    benchmark: "results/benchmarks/scale_cavity_grid_value_{variant}_{value}.tsv"
+    log: "results/logs/scale_cavity_grid_value_{variant}_{value}.log",
     script: "../scripts/run_task.py"
 
 

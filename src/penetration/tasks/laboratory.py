@@ -122,33 +122,48 @@ def fe_laboratory_grid_value(inputs, outputs, params):
     write_grid_piece(inputs, outputs, params)
 
 
-def write_grid_piece(inputs, outputs, params, size=None):
-    """A piece of an fe grid (fe_laboratory_grid_value's, or the scale effect's with its ``size``): every laboratory
-    shot at the failure strain ``params.value`` on the mesh of ``params.profile``, written to ``outputs.csv``."""
+def write_grid_piece(inputs, outputs, params, size=None, level="fe"):
+    """A piece of a grid (fe_laboratory_grid_value's, or the scale effect's at the cavity or fe level with its
+    ``size``): every laboratory shot at ``level`` with its factor at ``params.value`` (the fe level on the mesh of
+    ``params.profile``), written to ``outputs.csv``."""
     if not inputs.data:
         raise ValueError(f"{outputs.csv} is a committed piece of the grid: delete it to recompute it")
     shots_path, reference_path = inputs.data
     _, rows = read_rows(shots_path)
-    ctx = context_from_files(params.cfg, reference_path, profile=params.profile)
+    ctx = context_from_files(params.cfg, reference_path, profile=getattr(params, "profile", "full"))
     ctx.size = size
-    runs = _runs([user_shot(r) for r in rows], ctx, "fe", float(params.value), lambda m: print(m, flush=True))
-    write_csv(pd.DataFrame([{"shot_id": r["shot_id"], "fs": float(params.value), "dop_pred_m": res.depth_m,
+    runs = _runs([user_shot(r) for r in rows], ctx, level, float(params.value), lambda m: print(m, flush=True))
+    write_csv(pd.DataFrame([{"shot_id": r["shot_id"], FITTED[level][1]: float(params.value), "dop_pred_m": res.depth_m,
                              "status": res.status, "wall_time_s": res.wall_time_s} for r, res in zip(rows, runs)]),
               outputs.csv)
 
 
-def grid_runs_from(paths, rows, grid):
-    """The grid's runs from its pieces (one CSV per grid value, in the grid's order): (depths, statuses) per value
-    in the order of ``rows``, and their summed wall time."""
+def grid_runs_from(paths, rows, grid, column="fs"):
+    """The grid's runs from its pieces (one CSV per grid value, in the grid's order; ``column`` the factor's):
+    (depths, statuses) per value in the order of ``rows``, and their summed wall time."""
     columns, seconds = [], 0.0
     for path, value in zip(paths, grid):
         piece = pd.read_csv(path).set_index("shot_id")
-        if not np.allclose(piece.fs, value) or set(piece.index) != {r["shot_id"] for r in rows}:
-            raise ValueError(f"{path}: not the runs of every laboratory shot at fs = {value:g}")
+        if not np.allclose(piece[column], value) or set(piece.index) != {r["shot_id"] for r in rows}:
+            raise ValueError(f"{path}: not the runs of every laboratory shot at {column} = {value:g}")
         piece = piece.loc[[r["shot_id"] for r in rows]]
         columns.append((piece.dop_pred_m.to_numpy(), list(piece.status)))
         seconds += float(piece.wall_time_s.sum())
     return columns, seconds
+
+
+def grid_runs_from_table(path, timing_path, rows, grid, column):
+    """The grid's runs from a calibration's own grid table (``path``: shot_id, ``column``, dop_pred_m, status, every
+    shot at every grid value, as calibrate_cavity_laboratory writes it) and its timing record's wall time."""
+    table = pd.read_csv(path)
+    columns = []
+    for value in grid:
+        piece = table[np.isclose(table[column], value)].set_index("shot_id")
+        if set(piece.index) != {r["shot_id"] for r in rows}:
+            raise ValueError(f"{path}: not the runs of every laboratory shot at {column} = {value:g}")
+        piece = piece.loc[[r["shot_id"] for r in rows]]
+        columns.append((piece.dop_pred_m.to_numpy(), list(piece.status)))
+    return columns, float(pd.read_csv(timing_path).wall_time_s.iloc[0])
 
 
 @task

@@ -18,7 +18,7 @@ from ..studies.laboratory import FITTED, Protocol
 from ..studies.fe_results import CONTRASTS
 from ..studies.scale import split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
-from .laboratory import calibrate_on_laboratory, grid_runs_from, write_grid_piece
+from .laboratory import calibrate_on_laboratory, grid_runs_from, grid_runs_from_table, write_grid_piece
 
 
 def variant_columns(name, effect: SizeEffect | None):
@@ -54,8 +54,14 @@ def scale_validation(inputs, outputs, params):
         ctx = context_from_files(cfg, inputs.reference, profile=profile)
         ctx.size = effect
         print(f"{level}, variant {name}: calibrating on {len(rows)} laboratory shots", flush=True)
-        pieces = (params.fe_grid or {}).get(name)
-        grid_runs = (lambda rs, paths=pieces: grid_runs_from(paths, rs, grid)) if level == "fe" else None
+        pieces = (params.grids or {}).get(name)
+        column = FITTED[level][1]
+        if isinstance(pieces, dict):   # the variant without the effect: the laboratory calibration's own grid
+            grid_runs = lambda rs, p=pieces: grid_runs_from_table(p["table"], p["timing"], rs, grid, column)
+        elif pieces is not None:       # the grid in committed pieces, one per value
+            grid_runs = lambda rs, paths=pieces: grid_runs_from(paths, rs, grid, column)
+        else:
+            grid_runs = None
         f, p, _, timing = calibrate_on_laboratory(level, ctx, rows, protocol, params.shots_path,
                                                   lambda m: print("  " + m, flush=True), grid_runs)
         cols = variant_columns(name, effect)
@@ -160,3 +166,11 @@ def scale_fe_grid_value(inputs, outputs, params):
     """Every laboratory shot at the fe level of a mesh profile with one failure strain of the grid and one variant
     of the scale effect (a piece, committed, as the laboratory calibration's own grid: fe_laboratory_grid_value)."""
     write_grid_piece(inputs, outputs, params, SizeEffect.from_spec(params.cfg["scale_effect"]["variants"][params.variant]))
+
+
+@task
+def scale_cavity_grid_value(inputs, outputs, params):
+    """Every laboratory shot at the cavity level with one strength scale of the grid and one variant of the scale
+    effect (a piece, committed: a variant's grid takes about half an hour, so the study runs over sessions)."""
+    write_grid_piece(inputs, outputs, params, SizeEffect.from_spec(params.cfg["scale_effect"]["variants"][params.variant]),
+                     level="cavity")
