@@ -189,6 +189,21 @@ def test_the_calibration_scores_each_fold_on_direct_runs_at_its_fitted_value(mon
     with pytest.raises(ValueError, match="not the runs of every laboratory shot"):
         L.grid_runs_from(paths, rows, GRID)
 
+    # the calibration's own grid table (every shot at every value, as the cavity calibration writes it) and its
+    # timing record give the same calibration again (the scale effect's variant without the effect reads these)
+    grid.iloc[::-1].to_csv(tmp_path / "grid.csv", index=False)
+    pd.DataFrame([{"wall_time_s": 12.5}]).to_csv(tmp_path / "timing.csv", index=False)
+    calls.clear()
+    table = L.calibrate_on_laboratory("cavity", ctx, rows, Protocol(SERIES, GROUPS, GRID), "data.csv", log=lambda m: None,
+                                      grid_runs=lambda rows: L.grid_runs_from_table(tmp_path / "grid.csv",
+                                                                                    tmp_path / "timing.csv", rows, GRID,
+                                                                                    "strength_scale"))
+    pd.testing.assert_frame_equal(table[0], fits)
+    assert len(calls) == 3 + 5 + 3 + 2 and table[3].wall_time_s[0] == 12.5
+    grid[grid.shot_id != "x0"].to_csv(tmp_path / "grid.csv", index=False)
+    with pytest.raises(ValueError, match="not the runs of every laboratory shot"):
+        L.grid_runs_from_table(tmp_path / "grid.csv", tmp_path / "timing.csv", rows, GRID, "strength_scale")
+
 
 def test_the_command_line_reports_the_validation_row_of_the_calibration_in_use(tmp_path):
     """validated_accuracy picks, per level, the primary row of the calibration asked for where a level has several;
