@@ -51,3 +51,21 @@ def test_the_accuracy_line_states_the_errors():
     line = accuracy_line("fe", {"shots": 25, "median_abs_rel_err": 0.344, "p90_abs_rel_err": 0.539,
                                 "mean_rel_err": 0.317, "within_10pct": 2})
     assert "median 34 %" in line and "mean +32 % (too deep" in line and "2 of 25 within 10 %" in line
+
+
+def test_a_default_outside_the_range_is_said_once_and_not_warned():
+    """The command line's default density (the paper's concrete, 2440 kg/m^3) lies outside the development shots'
+    range (here 2300-2370): a shot that left it to the default gets no warning for it, but one note; a density the user gave
+    outside the range is warned."""
+    from penetration.shots.ladder import shot_from_keywords
+    from penetration.shots.trust import defaults_note
+    rng = ValidatedRange.from_rows(ROWS)   # densities 2300-2370 kg/m^3
+    keys = {"diameter_m": "0.0269", "mass_kg": "0.9", "velocity_ms": "500", "fc_MPa": "40"}
+    default = shot_from_keywords("ogive", {**keys, "crh": "3"})
+    given = shot_from_keywords("ogive", {**keys, "crh": "3", "target_density_kgm3": "2440"})
+    assert default.defaults == ("target_density_kgm3",) and given.defaults == ()
+    assert warnings(default, rng) == [] and defaults_note(given, rng) == ""
+    assert defaults_note(default, rng) == ("target_density_kgm3 not given: its default 2440 kg/m^3 lies outside the "
+                                           "validated 2300-2370 kg/m^3")
+    assert warnings(given, rng) == ["concrete density (target_density_kgm3) 2440 kg/m^3 is outside the validated "
+                                    "2300-2370 kg/m^3"]

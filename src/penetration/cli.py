@@ -286,14 +286,15 @@ def _validation(args):
 
 def _trust(args, shot, level):
     """The validated accuracy line of ``level`` and the warnings for ``shot`` (from the committed validation), with
-    the scale effect the shot ran with."""
-    from .shots.trust import warnings
+    the scale effect the shot ran with; a default outside the validated range is said there once, not warned."""
+    from .shots.trust import defaults_note, warnings
     found = _validation(args)
     if found is None:
         return UNKNOWN_ACCURACY, []
     rng, errors = found
     line, rng = _accuracy_with_size(args, level, errors, rng)
-    return f"{line}; validated range: {rng.describe()}", warnings(shot, rng)
+    note = defaults_note(shot, rng)
+    return f"{line}; validated range: {rng.describe()}" + (f"; {note}" if note else ""), warnings(shot, rng)
 
 
 def _accuracy_with_size(args, level, errors, rng):

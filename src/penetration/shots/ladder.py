@@ -64,6 +64,7 @@ class UserShot:
     density: float = 2440.0
     length: float | None = None   # projectile length (m); needed by the fe level only
     label: str = ""
+    defaults: tuple = ()          # the shot fields (shots.SHOT_FIELDS names) the user left to their defaults
 
     def __post_init__(self):
         """Each attribute in its range; an error names the shot field (shots.SHOT_FIELDS) and its unit."""
@@ -377,12 +378,13 @@ def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
                                  f"({SHOT_FIELDS[name].unit}), the {SHOT_FIELDS[name].what}")
         raise ParameterError("shot", key, kw[key], f"a shot key ({', '.join(SHOT_FIELDS)}) or a key of the {kind} nose "
                              f"({', '.join(allowed_nose) or 'none'})")
-    values = {}
+    values, defaults = {}, []
     for name, f in SHOT_FIELDS.items():
         text = kw.pop(name, None)
         if text is None:
             if f.default is not None:
                 values[name] = f.default
+                defaults.append(name)
             elif name == "length_m" or (name == "diameter_m" and kind == "table"):
                 continue
             else:
@@ -408,7 +410,7 @@ def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
                                  f"last y, {nose.radius:g} m): {2.0 * nose.radius:g} m, or leave diameter_m out")
     else:
         nose = make_nose(kind, radius=0.5 * values["diameter_m"], **kw)
-    return UserShot(nose, **_si(values), label=label)
+    return UserShot(nose, **_si(values), label=label, defaults=tuple(defaults))
 
 
 # columns a prediction adds (one the input already has is replaced)

@@ -60,10 +60,13 @@ def shot_values(shot) -> dict:
 
 
 def warnings(shot, rng: ValidatedRange) -> list[str]:
-    """One line for each quantity of ``shot`` outside ``rng``, and for a nose that is not an ogive of its CRHs."""
+    """One line for each quantity of ``shot`` outside ``rng`` that the user gave (a default is said once, in
+    defaults_note), and for a nose that is not an ogive of its CRHs."""
     out = []
     for q, v in shot_values(shot).items():
         lo, hi = rng.bounds[q]
+        if QUANTITIES[q][0] in getattr(shot, "defaults", ()):
+            continue
         if not lo <= v <= hi:
             _, _, label, unit, f = QUANTITIES[q]
             out.append(f"{label} {v * f:.4g} {unit} is outside the validated {lo * f:.4g}-{hi * f:.4g} {unit}")
@@ -73,6 +76,18 @@ def warnings(shot, rng: ValidatedRange) -> list[str]:
     elif not rng.crh[0] <= nose.psi <= rng.crh[1]:
         out.append(f"CRH {nose.psi:g} is outside the validated CRH {rng.crh[0]:g}-{rng.crh[1]:g}")
     return out
+
+
+def defaults_note(shot, rng: ValidatedRange) -> str:
+    """The quantities ``shot`` took by default that lie outside ``rng``, said once (empty where none does)."""
+    out = []
+    for q, v in shot_values(shot).items():
+        col, _, label, unit, f = QUANTITIES[q]
+        lo, hi = rng.bounds[q]
+        if col in getattr(shot, "defaults", ()) and not lo <= v <= hi:
+            out.append(f"{col} not given: its default {v * f:.4g} {unit} lies outside the validated {lo * f:.4g}-"
+                       f"{hi * f:.4g} {unit}")
+    return "; ".join(out)
 
 
 def with_scale_effect_range(rng: ValidatedRange, row) -> ValidatedRange:
