@@ -280,3 +280,13 @@ def test_band_profiles_are_checked(band, needle):
     cfg["fe_band"] = band
     with pytest.raises(ConfigError, match=needle):
         check_config(cfg, ROOT / "workflow/schemas/config.schema.json", "config")
+
+
+@pytest.mark.parametrize("option,value", [("--strength-scale", "1e300"), ("--strength-scale", "0"),
+                                          ("--failure-strain", "1e300"), ("--failure-strain", "-1")])
+def test_a_calibration_override_out_of_range_is_refused_before_any_run(option, value):
+    """A huge strength scale or failure strain ran until killed; each override has a stated range."""
+    from conftest import run_cli
+    out = run_cli("dop", "ogive", "crh=3", "diameter_m=0.0269", "mass_kg=0.9", "length_m=0.2424", "velocity_ms=500",
+                  "fc_MPa=40", "--model", "fe" if option == "--failure-strain" else "cavity", option, value)
+    assert out.returncode == 2 and option in out.stderr and "<=" in out.stderr and out.stdout == ""

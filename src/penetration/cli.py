@@ -332,6 +332,14 @@ def _predict_trust(args, good):
             print(f"warning: {row.get('shot_id') or 'a row'}: {w}", file=sys.stderr)
 
 
+# the largest value of a calibration the command line takes in place of the committed one, and why
+OVERRIDE_RANGES = {
+    "strength_scale": (10.0, "a factor on Table 1's whole strength surface; the committed calibrations lie between "
+                             "0.5 and 1"),
+    "failure_strain": (20.0, "an erosion strain; the committed calibrations lie between 1 and 3.2"),
+}
+
+
 def _context(args):
     """The levels' context from --root, with the command line's calibration overrides (checked)."""
     from .pipeline.config import available_memory
@@ -347,8 +355,9 @@ def _context(args):
     for name, attr in (("--strength-scale", "strength_scale"), ("--failure-strain", "failure_strain")):
         value = getattr(args, attr)
         if value is not None:
-            if not (value > 0 and value < float("inf")):
-                raise ParameterError("argument", name, value, f"{name} > 0")
+            top, why = OVERRIDE_RANGES[attr]
+            if not (0 < value <= top):
+                raise ParameterError("argument", name, value, f"0 < {name} <= {top:g} ({why})")
             setattr(ctx, attr, value)
             setattr(ctx, f"{attr}_source", f"given on the command line ({name})")
     return ctx
