@@ -27,3 +27,27 @@ def test_failed_write_keeps_the_old_file_and_leaves_no_temporary(tmp_path):
             raise RuntimeError("interrupted")
     assert target.read_text() == "old\n"
     assert [p.name for p in tmp_path.iterdir()] == ["out.txt"]
+
+
+def test_a_read_only_target_or_folder_is_refused_before_anything_is_computed(tmp_path):
+    """A read-only file is never replaced, and a read-only folder cannot take the finished file: both refused up front
+    (a mode without write bits counts as read-only even for root, who may write anything)."""
+    import os
+
+    from penetration.pipeline.io import TargetError, check_target
+    kept = tmp_path / "kept.csv"
+    kept.write_text("x\n")
+    os.chmod(kept, 0o444)
+    with pytest.raises(TargetError, match="read-only; allowed: a writable file"):
+        check_target(kept)
+    folder = tmp_path / "locked"
+    folder.mkdir()
+    os.chmod(folder, 0o555)
+    try:
+        for target in (folder / "new.csv", folder / "deeper" / "new.csv"):
+            with pytest.raises(TargetError, match="folder .* is read-only"):
+                check_target(target)
+    finally:
+        os.chmod(folder, 0o755)
+    check_target(folder / "new.csv")
+    check_target(tmp_path / "new" / "deeper.csv")

@@ -49,14 +49,35 @@ def check_target(path):
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
+        _check_folder(path)
         return
     except NotADirectoryError:
         return  # a parent is a file: the write fails with its own error
     if stat.S_ISREG(mode):
+        if not _writable(path, mode):
+            raise TargetError(f"{path} is read-only; allowed: a writable file or a new path (a finished run never "
+                              "replaces a read-only file)")
+        _check_folder(path)
         return
     kind = next((text for test, text in _KINDS if test(mode)), "not a regular file")
     via = f" (a symlink to {os.path.realpath(path)})" if os.path.islink(path) else ""
     raise TargetError(f"{path} is {kind}{via}; allowed: a regular file or a new path")
+
+
+def _writable(path, mode) -> bool:
+    """Whether ``path`` may be written: access allows it and its mode has a write bit (root may write anything, but
+    a file or folder without any write bit was meant to be kept)."""
+    return os.access(path, os.W_OK) and bool(mode & (stat.S_IWUSR | stat.S_IWGRP | stat.S_IWOTH))
+
+
+def _check_folder(path):
+    """Raise TargetError where the nearest existing folder of ``path`` cannot take a new file (the result is written
+    beside it, then renamed): checked before any computing, so that no finished run is lost."""
+    folder = Path(os.path.abspath(path)).parent
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    if folder.is_dir() and not _writable(folder, os.stat(folder).st_mode):
+        raise TargetError(f"{path}: its folder {folder} is read-only; allowed: a path in a writable folder")
 
 
 @contextmanager
