@@ -14,21 +14,28 @@ def _f(x, fmt):
         return "—"
 
 
+def _validations(read):
+    """(level -> the rows of its figures/scale/validation_LEVEL.csv, the config's levels whose study has not run)."""
+    import yaml
+
+    found, missing = {}, []
+    for level in yaml.safe_load(read("workflow/config.yaml"))["scale_effect"]["levels"]:
+        rows = rows_if_any(read, f"figures/scale/validation_{level}.csv")
+        if rows:
+            found[level] = rows
+        else:
+            missing.append(level)
+    return found, missing
+
+
 def scale_effect(read) -> str:
     """Per level and variant of the scale effect: the factor fitted on each series alone and their ratio, the pooled
     leave-one-series-out errors, each series' mean error, DO1's prediction (fold all) and whether the goals hold."""
-    import yaml
-
-    levels = yaml.safe_load(read("workflow/config.yaml"))["scale_effect"]["levels"]
     lines = ["| level | variant | mechanisms | factor on 26.9 mm / 76.2 mm | ratio | held-out median / p90 "
              "&#124;error&#124; | mean error 76.2 mm / 26.9 mm | DO1 (5.1 m) | goals met |",
              "|---|---|---|---|---|---|---|---|---|"]
-    missing = []
-    for level in levels:
-        rows = rows_if_any(read, f"figures/scale/validation_{level}.csv")
-        if not rows:
-            missing.append(level)
-            continue
+    found, missing = _validations(read)
+    for level, rows in found.items():
         for r in rows:
             met = goals_met(r).values()
             lines.append(
@@ -53,17 +60,10 @@ def scale_levels(read) -> str:
     """README's validation table of the scale effect: each level without it and with the variant of the smallest
     held-out median |error|, its errors left one series out, the ratio of the two series' factors, DO1 predicted by
     no fit of it, and the variant the command line takes by default (studies.scale.recommended_variant)."""
-    import yaml
-
-    levels = yaml.safe_load(read("workflow/config.yaml"))["scale_effect"]["levels"]
     lines = ["| level | scale effect | held-out median / p90 &#124;error&#124; | series' factors apart | DO1 (5.1 m, in no "
              "fit) | goals met | `--size auto` takes |", "|---|---|---|---|---|---|---|"]
-    missing = []
-    for level in levels:
-        rows = rows_if_any(read, f"figures/scale/validation_{level}.csv")
-        if not rows:
-            missing.append(level)
-            continue
+    found, missing = _validations(read)
+    for level, rows in found.items():
         auto = recommended_variant(rows) or "none"
         best = best_variant([r for r in rows if r["variant"] != "none"])
         shown = [r for r in rows if r["variant"] == "none"] + ([best] if best else [])
