@@ -113,3 +113,18 @@ def test_non_monotone_table_names_the_row(tmp_path):
     path.write_text("x,y\n0,0\n0.1,0.05\n0.2,0.04\n")
     with pytest.raises(ParameterError, match="y in row 4 = 0.04 "):  # the header is row 1
         make_nose("table", path=str(path))
+
+
+def test_a_table_nose_answers_radius_and_shape_rate_like_the_nose_it_samples():
+    """A table nose's ``y`` is its column of points, so the radius along the nose is radius_at for every nose (the
+    FE level's nose pressure and the shape rate called ``y`` and failed on a table nose)."""
+    import numpy as np
+
+    from penetration.nose.geometry import Ogive, TabulatedNose
+    from penetration.nose.nstar import shape_rate
+    ogive = Ogive(3.0, 0.07)
+    xs = np.linspace(0.0, ogive.length, 2001)
+    table = TabulatedNose(tuple(xs), tuple(ogive.radius_at(xs)))
+    x = np.linspace(0.05, 0.8, 7) * ogive.length   # away from the shank, where the slope and its chord error vanish
+    np.testing.assert_allclose(table.radius_at(x), ogive.radius_at(x), rtol=1e-6)
+    np.testing.assert_allclose(shape_rate(table, x), shape_rate(ogive, x), rtol=1e-2)   # chord slopes: O(h kappa / beta)

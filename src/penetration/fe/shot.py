@@ -100,7 +100,7 @@ def nose_pressure(model, projectile, nose, h):
     if not near.any():
         return 0.0
     zn = np.clip(zeta[near], 0.0, nose.length)
-    y = nose.y(zn)
+    y = nose.radius_at(zn)
     near_idx = np.flatnonzero(near)
     keep = rc[near] < y + 2.5 * h
     if not keep.any():

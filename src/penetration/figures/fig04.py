@@ -42,7 +42,7 @@ def fig04(inputs, outputs, params):
     ax.annotate("O", (0, 0), textcoords="offset points", xytext=(2, 5))
     for i, (x0, x1) in enumerate(((0, xC), (xC, xD), (xD, nose.length)), start=1):
         xs = np.linspace(x0, x1, 50)
-        ax.fill_between(to_axis("fig4_double_ogive", xs), 0, nose.y(xs), alpha=0.12, color=f"C{i + 2}")
+        ax.fill_between(to_axis("fig4_double_ogive", xs), 0, nose.radius_at(xs), alpha=0.12, color=f"C{i + 2}")
         ax.text(to_axis("fig4_double_ogive", 0.5 * (x0 + x1)), 0.08, f"region {i}", ha="center", fontsize=7)
     band = design["band"]
     ax.set(xlabel="x/b (b: CRH 3 nose length)", ylabel="y/a", xlim=(-0.4, 1.05), ylim=(0, 1.05),

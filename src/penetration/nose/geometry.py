@@ -267,6 +267,11 @@ class NoseShape:
         return idx
 
     def y(self, x):
+        """Radius of the nose at axial position x (0 outside [0, length]); radius_at for any nose (a table nose's
+        ``y`` is its column of points)."""
+        return self.radius_at(x)
+
+    def radius_at(self, x):
         """Radius of the nose at axial position x (0 outside [0, length])."""
         return self._evaluate(x, lambda seg, t: seg.point(t)[1], fill_at_tip=True)
 

@@ -57,6 +57,6 @@ def shape_rate(nose, x):
     Finite on every non-vertical segment; a flat face is a jump in N*, not a
     rate, and is left out.
     """
-    y = nose.y(x)
+    y = nose.radius_at(x)
     beta = nose.angle(x)
     return 2.0 / nose.radius**2 * y * np.sin(beta) ** 2 * np.tan(beta)
