@@ -290,3 +290,20 @@ def test_a_calibration_override_out_of_range_is_refused_before_any_run(option, v
     out = run_cli("dop", "ogive", "crh=3", "diameter_m=0.0269", "mass_kg=0.9", "length_m=0.2424", "velocity_ms=500",
                   "fc_MPa=40", "--model", "fe" if option == "--failure-strain" else "cavity", option, value)
     assert out.returncode == 2 and option in out.stderr and "<=" in out.stderr and out.stdout == ""
+
+
+def test_a_root_whose_config_the_pipeline_would_refuse_is_refused_by_the_command_line(tmp_path):
+    """--root's config is checked against the config schema before any shot (a value of the wrong type, which the
+    pipeline refuses, reached a cavity answer unchecked)."""
+    import shutil
+
+    from conftest import run_cli
+    (tmp_path / "workflow").mkdir()
+    text = (ROOT / "workflow/config.yaml").read_text()
+    assert "\n  zones: " in text
+    lines = [("  zones: five" if line.startswith("  zones: ") else line) for line in text.splitlines()]
+    (tmp_path / "workflow/config.yaml").write_text("\n".join(lines) + "\n")
+    shutil.copytree(ROOT / "workflow/schemas", tmp_path / "workflow/schemas")
+    out = run_cli("dop", "ogive", "crh=3", "diameter_m=0.0269", "mass_kg=0.9", "velocity_ms=500", "fc_MPa=40",
+                  "--model", "cavity", "--root", str(tmp_path))
+    assert out.returncode == 2 and "cavity.zones" in out.stderr and "allowed" in out.stderr and out.stdout == ""

@@ -20,6 +20,9 @@ from ..pipeline.io import load_json, read_rows
 from ..studies.laboratory import FITTED
 from ..studies.scale import recommended_variant
 from .ladder import Context
+
+# this package's checkout (its workflow/schemas/), where it is one
+PACKAGE_ROOT = Path(__file__).resolve().parents[3]
 from .trust import ValidatedRange
 
 
@@ -92,6 +95,21 @@ NO_SIZE = "none"
 AUTO_SIZE = "auto"
 
 
+CONFIG_SCHEMA = "workflow/schemas/config.schema.json"
+
+
+def root_config(root) -> dict:
+    """The pipeline config under ``root`` (workflow/config.yaml) read strictly (a key given twice, NaN or inf refused)
+    and checked against the config schema under ``root`` (this package's where the root has none), so that a config
+    the pipeline would refuse never answers a user's shot silently."""
+    import json
+
+    root = Path(root)
+    schema_path = root / CONFIG_SCHEMA if (root / CONFIG_SCHEMA).is_file() else PACKAGE_ROOT / CONFIG_SCHEMA
+    schema = json.loads(schema_path.read_text()) if schema_path.is_file() else {}
+    return load_with(root / "workflow/config.yaml", schema)
+
+
 # The level whose calibration and validation a shot with the scale effect takes: the trajectory level's effects
 # are the closed form's (it returns Eq 9's depth), so it takes the analytic level's.
 SIZE_LEVEL = {"analytic": "analytic", "trajectory": "analytic", "cavity": "cavity", "fe": "fe"}
@@ -137,7 +155,7 @@ def chosen_size(root, level, size, profile="full", strength_law=None) -> tuple[s
     best = recommended_variant(pd.read_csv(path).to_dict("records"))
     if best is None:
         return NO_SIZE, f"no variant meets the validation's goals at the {at} level ({validation})"
-    problem = size_problem(load_with(Path(root) / "workflow/config.yaml", {}), root, level, best, profile, strength_law)
+    problem = size_problem(root_config(root), root, level, best, profile, strength_law)
     if problem is not None:
         return NO_SIZE, f"{best} meets every goal at the {at} level ({validation}) but needs {problem}"
     return best, f"it meets every goal of the validation at the {at} level ({validation})"
@@ -173,7 +191,7 @@ def scale_effect_context(ctx: Context, root, level, variant, profile="full", str
     if variant == NO_SIZE:
         return ctx
     root = Path(root)
-    cfg = load_with(root / "workflow/config.yaml", {})
+    cfg = root_config(root)
     problem = size_problem(cfg, root, level, variant, profile, strength_law)
     if problem is not None:
         raise ParameterError("argument", "--size", variant, problem)
@@ -193,7 +211,7 @@ def scale_effect_accuracy(root, level, variant):
     row = table[(table.level == level) & (table.variant == variant)]
     if len(row) != 1:
         return None
-    cfg = load_with(root / "workflow/config.yaml", {})
+    cfg = root_config(root)
     refs = reference.load_reference(root / cfg["reference"])
     return {**row.iloc[0].to_dict(), "do1_diameter_m": refs["table2.diameter"].si}
 
@@ -227,7 +245,7 @@ def context_from_pipeline(root=".", profile="full", strength_law=None, calibrati
     carries its DO1 failure strain over, saying so in its source), ``do1`` (both levels calibrated on DO1) or the path
     of a cavity calibration record (the fe level then as with ``laboratory``)."""
     root = Path(root)
-    cfg = load_with(root / "workflow/config.yaml", {})  # the strict loader: a key given twice, NaN or inf refused
+    cfg = root_config(root)  # the strict loader (a key given twice, NaN or inf refused) and the config schema
     cav = cavity_calibration_path(root, calibration)
     if calibration not in CALIBRATIONS and not cav.is_file():
         raise ParameterError("argument", "--calibration", calibration, f"one of {list(CALIBRATIONS)} or an existing "
@@ -256,7 +274,7 @@ def validated_accuracy(root=".", profile="full", calibration="laboratory"):
     root = Path(root)
     summary = root / VALIDATION_SUMMARY.format(profile=profile)
     try:
-        cfg = load_with(root / "workflow/config.yaml", {})
+        cfg = root_config(root)
         _, rows = read_rows(root / cfg["validation"]["shots"])
         table = pd.read_csv(summary)
     except (OSError, KeyError, ValueError):
