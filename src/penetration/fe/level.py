@@ -220,6 +220,7 @@ def calibrate_strength_scale(spec: RunSpec, depth, material, bracket=(0.3, 3.0),
 BYTES_PER_ELEMENT = 400        # the solver's element and node arrays, about (14 + 8) floats an element and 12 a node
 DEPTH_FROM_ALLOWANCE = 0.875   # the FE depth is about 1.4 Eq 9 depths: 1.4 / shots.DEPTH_ALLOWANCE of the domain's estimate
 TIME_FACTOR = 2.1              # time to rest over depth / striking velocity (Forrestal's model: 2.0-2.2 over the ladder)
+UNPROBED_NS = 5.0              # ns per element-step below any measured (the bandwidth floor is 10-15): a lower bound
 LOAD_FACTOR = 1.0              # an element-step over the run against one of the probe's: 1.3 overestimated three shots by
                                # 1.32-1.84 times (workflow/benchmarks/fe_estimate.py on a 2-core EPYC)
 
@@ -236,11 +237,13 @@ class CostEstimate:
     memory_bytes: float
 
     def describe(self) -> str:
-        per = f"{self.ns_per_element_step:.0f} ns per element-step measured now" if self.ns_per_element_step else \
-            "not measured"
-        return (f"estimated cost: {self.elements} elements ({self.window_elements} computed per step) x {self.steps} "
-                f"steps to rest at about {self.time_to_rest_s * 1e3:.3g} ms = {self.seconds / 60:.2g} min on this "
-                f"machine ({per}; {self.memory_bytes / 2**20:.0f} MiB)")
+        head = (f"estimated cost: {self.elements} elements ({self.window_elements} computed per step) x {self.steps} "
+                f"steps to rest at about {self.time_to_rest_s * 1e3:.3g} ms")
+        if not self.ns_per_element_step:   # refused before the probe: a bound, never a time of this machine
+            return (f"{head}: at least {self.seconds / 60:.2g} min (a lower bound at {UNPROBED_NS:g} ns per "
+                    f"element-step; this machine was not probed; {self.memory_bytes / 2**20:.0f} MiB)")
+        return (f"{head} = {self.seconds / 60:.2g} min on this machine ({self.ns_per_element_step:.0f} ns per "
+                f"element-step measured now; {self.memory_bytes / 2**20:.0f} MiB)")
 
 
 def estimate_cost(spec: RunSpec, max_seconds=math.inf, probe_time=4e-5, available_memory=math.inf) -> CostEstimate:
@@ -283,7 +286,7 @@ def estimate_cost(spec: RunSpec, max_seconds=math.inf, probe_time=4e-5, availabl
     # the explicit step of the core's elements (square, size h) at the target's dilatational wave speed
     c = math.sqrt((material.Ke + 4 * material.G / 3) / material.rho0) if hasattr(material, "Ke") else 4000.0
     dt_guess = settings.controls.dt_factor * h / c
-    bound = t_rest / dt_guess * window * 5e-9
+    bound = t_rest / dt_guess * window * UNPROBED_NS * 1e-9
     if bound > max_seconds:
         return CostEstimate(elements, window, int(t_rest / dt_guess), t_rest, 0.0, bound, memory)
     model = model_for(nose, settings, target, material, expected_depth)

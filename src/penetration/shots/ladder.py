@@ -288,7 +288,8 @@ def _fe(shot, ctx, log=None):
         if log is not None:
             log(est.describe())
     if est is not None and est.seconds > ctx.fe_max_seconds:
-        raise ParameterError("fe shot", "estimated cost", f"{est.seconds / 60:.3g} min",
+        raise ParameterError("fe shot", "estimated cost", ("" if est.ns_per_element_step else "at least ")
+                             + f"{est.seconds / 60:.3g} min",
                              f"at most --max-minutes {ctx.fe_max_seconds / 60:g} ({est.describe()}); raise "
                              "--max-minutes to run it")
     with progress_to(log):
