@@ -94,7 +94,9 @@ def test_a_job_ends_when_its_parent_is_killed(tmp_path):
 
 
 @pytest.mark.slow
-def test_killing_the_build_ends_snakemake_and_its_jobs(tmp_path):
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_killing_the_build_ends_snakemake_and_its_jobs(tmp_path, sig):
+    """SIGTERM is forwarded to Snakemake; SIGKILL cannot be, and Snakemake ends by its parent-death signal."""
     (tmp_path / "Snakefile").write_text(textwrap.dedent("""
         rule all:
             input: "out.txt"
@@ -110,7 +112,7 @@ def test_killing_the_build_ends_snakemake_and_its_jobs(tmp_path):
             break
         time.sleep(0.05)
     job = int(pid_file.read_text())
-    proc.send_signal(signal.SIGTERM)
+    proc.send_signal(sig)
     assert proc.wait(timeout=30) != 0
     assert ends_within(job, 10.0), "the job outlived the build"
     assert not (tmp_path / "out.txt").exists()

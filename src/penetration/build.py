@@ -11,7 +11,8 @@ time of the jobs finished), so that it holds on a slower or busier machine and w
 with no record counts as the median job.
 
 Killing this process (SIGTERM, SIGINT, SIGHUP) ends Snakemake and its jobs: they run in a process group of their
-own, which is signalled as a whole. Snakemake's exit status is this command's.
+own, which is signalled as a whole; SIGKILL, which cannot be passed on, ends them too, through the group's leader
+(a child of this process that Linux signals when its parent dies). Snakemake's exit status is this command's.
 """
 from __future__ import annotations
 
@@ -135,11 +136,40 @@ def _profile(argv) -> str:
     return "full"
 
 
+GROUP_LEADER = "--group-leader"
+PARENT_ENV = "PENETRATION_BUILD_PARENT"   # the wrapper's pid, as the group leader checks it is still there
+
+
+def _lead_group(argv) -> int:
+    """The wrapper's child, leader of a new process group holding Snakemake and its jobs: it ends the whole group on
+    SIGTERM, SIGINT or SIGHUP, and Linux sends it SIGTERM when the wrapper ends, even by SIGKILL, which the wrapper
+    cannot pass on (prctl PR_SET_PDEATHSIG; a wrapper gone already ends it at once)."""
+    parent = int(os.environ.get(PARENT_ENV, os.getppid()))
+
+    def end_group(signum, _frame):
+        signal.signal(signum, signal.SIG_DFL)
+        os.killpg(0, signum)
+
+    for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
+        signal.signal(sig, end_group)
+    try:
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)   # 1: PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass   # not Linux: the signals the wrapper forwards are the only link
+    if os.getppid() != parent:
+        end_group(signal.SIGTERM, None)
+    return subprocess.call([sys.executable, "-m", "snakemake", *argv])
+
+
 def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == [GROUP_LEADER]:
+        return _lead_group(argv[1:])
     progress = Progress(Estimate(read_records(), _profile(argv)))
-    proc = subprocess.Popen([sys.executable, "-m", "snakemake", *argv], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            text=True, bufsize=1, start_new_session=True)
+    proc = subprocess.Popen([sys.executable, "-m", "penetration.build", GROUP_LEADER, *argv], stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, bufsize=1, start_new_session=True,
+                            env={**os.environ, PARENT_ENV: str(os.getpid())})
 
     def forward(signum, _frame):
         try:
