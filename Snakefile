@@ -53,7 +53,11 @@ RESEARCH = study_outputs("workflow/studies.yaml", "workflow/schemas/studies.sche
     "t3shot": list(config["fe_realisations"]["window"]["shots"]),
     "rv": [f"{v:g}" for v in config["fe_realisations"]["velocities"]], "utarget": list(config["fe_realisations"]["unstated"]),
     "fs": [f"{v:g}" for v in config["validation"]["laboratory"]["failure_strains"]],
-    "slevel": list(config["scale_effect"]["levels"])}, CHECK_STUDIES)
+    "slevel": list(config["scale_effect"]["levels"]),
+    "cvariant": [v for v in config["scale_effect"]["levels"].get("cavity", []) if v != "none"],
+    "fvariant": [v for v in config["scale_effect"]["levels"].get("fe", []) if v != "none"],
+    "ss": [f"{v:g}" for v in config["validation"]["laboratory"]["strength_scales"]],
+    "sprofile": [config["scale_effect"]["fe_profile"]]}, CHECK_STUDIES)
 STUDY_OUTPUTS = [path for paths in RESEARCH.values() for path in paths]
 
 
