@@ -17,6 +17,7 @@ from ..fe.shot import Settings
 from ..paper import reference
 from ..pipeline.config import element_sizes, load_with
 from ..pipeline.io import load_json, read_rows
+from ..pipeline.scenes import SIZE_LEVEL  # the level whose scale-effect calibration a level takes
 from ..studies.laboratory import FITTED
 from ..studies.scale import recommended_variant
 from .ladder import Context
@@ -110,9 +111,6 @@ def root_config(root) -> dict:
     return load_with(root / "workflow/config.yaml", schema)
 
 
-# The level whose calibration and validation a shot with the scale effect takes: the trajectory level's effects
-# are the closed form's (it returns Eq 9's depth), so it takes the analytic level's.
-SIZE_LEVEL = {"analytic": "analytic", "trajectory": "analytic", "cavity": "cavity", "fe": "fe"}
 
 
 def size_problem(cfg, root, level, variant, profile="full", strength_law=None):
