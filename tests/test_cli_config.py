@@ -63,7 +63,7 @@ def test_predict_reports_bad_rows_and_writes_good_ones(tmp_path):
     shots.write_text("shot_id,mass_kg,diameter_m,nose_shape,crh,target_density_kgm3,fc_MPa,velocity_ms,dop_m,extra\n"
                      "A,0.9,0.0269,ogive,2,2370,32.4,800,0.958,keep\n"
                      "B,-1,0.0269,ogive,2,2370,32.4,800,0.9,x\n"
-                     "C,0.9,0.0269,cone,2,2370,32.4,800,0.9,x\n"
+                     "C,0.9,0.0269,wedge,2,2370,32.4,800,0.9,x\n"
                      "D,0.9,0.0269,hemispherical,,2370,32.4,800,0.9,x\n")
     out = tmp_path / "out.csv"
     res = cli("predict", str(shots), "--model", "analytic", "--out", str(out))

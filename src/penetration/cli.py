@@ -18,8 +18,9 @@ from pathlib import Path
 
 from .errors import ParameterError
 from .levels import LEVELS
-from .nose.geometry import NOSES, make_nose
+from .nose.geometry import NOSES
 from .nose.nstar import nstar
+from .nose.solve import solve_nose
 from .pipeline.config import ConfigError
 from .units import NUMBER_FORM, parse_number
 
@@ -31,6 +32,9 @@ KEYS_HELP = {
     "minimum_nstar": "radius=a length=b",
     "table": "path=FILE.csv (columns x,y in metres)",
 }
+CONSTRAINT_HELP = ("a nose by constraint (every kind but flat and table): leave one key out and give nose_length=m "
+                   "(tip to shank) or nstar=N* (Eq 5); that key is solved for (solve=KEY names it where a key with a "
+                   "default, e.g. tip_length, is the free one); the smallest root is taken and any other is printed")
 # nose keys of dop and simulate: nstar's without radius (the shank radius is diameter_m/2); shots.ladder.nose_keys
 SHOT_NOSE_HELP = {
     "ogive": "psi=CRH or crh=CRH (the shots CSV's name) [tip_radius=m]",
@@ -123,6 +127,7 @@ def _shot_parser(sub, name, help_text):
                                     f"{NUMBER_FORM}):") + "\n" + _shot_keys_help()
                        + "\nnose kinds and their keys (as nstar's, without radius: the nose's radius is diameter_m/2):\n"
                        + "\n".join(_wrap(f"  {k}: {v}", 4) for k, v in SHOT_NOSE_HELP.items())
+                       + "\n" + _wrap(CONSTRAINT_HELP)
                        + "\n\n" + _wrap(LEVELS_EPILOG))
     p.add_argument("kind", help=f"nose kind, one of {sorted(NOSES)}")
     p.add_argument("params", nargs="*", metavar="key=value", help="shot keys and nose keys (see below)")
@@ -136,10 +141,20 @@ def _parser():
                                 description="Penetration of double-ogive-nose projectiles (Liu, Pi & Huang 2015).")
     sub = p.add_subparsers(dest="command", required=True)
     n = sub.add_parser("nstar", help="nose shape factor N* (Eq 5), length and volume of a nose",
-                       epilog="kinds: " + "; ".join(f"{k}: {v}" for k, v in KEYS_HELP.items()))
+                       epilog=_wrap("kinds: " + "; ".join(f"{k}: {v}" for k, v in KEYS_HELP.items()) + ". "
+                                    + CONSTRAINT_HELP))
     n.add_argument("kind", help=f"one of {sorted(NOSES)}")
     n.add_argument("params", nargs="*", metavar="key=value", help="nose parameters in SI units")
     n.add_argument("--json", action="store_true", help="print one JSON object")
+    o = sub.add_parser("outline", help="a nose's outline as CSV (columns x, y in metres: a table nose) and a PNG",
+                       epilog=_wrap("kinds: " + "; ".join(f"{k}: {v}" for k, v in KEYS_HELP.items()) + ". "
+                                    + CONSTRAINT_HELP))
+    o.add_argument("kind", help=f"one of {sorted(NOSES)}")
+    o.add_argument("params", nargs="*", metavar="key=value", help="nose parameters in SI units")
+    o.add_argument("--out", required=True, help="CSV to write (x, y in metres, tip to shank; readable as "
+                   "'table path=FILE'); the PNG is written beside it with the suffix .png unless --png is given")
+    o.add_argument("--png", default=None, help="PNG to write (default: --out with the suffix .png)")
+    o.add_argument("--points", type=int, default=200, help="points per segment of the outline (default 200; 2-10000)")
     _shot_parser(sub, "dop", "depth of penetration, time to rest, peak deceleration and cost of one shot")
     s = _shot_parser(sub, "simulate", "one shot as dop, and its history (time, depth, velocity, deceleration) as CSV")
     s.add_argument("--out", required=True, help="history CSV to write (levels trajectory, cavity, fe)")
@@ -194,7 +209,8 @@ def _predict(args) -> int:
     good = []
     _interruptible()
     try:
-        good, problems = predict_rows(rows, args.strength_law, args.model, ctx, _progress(f"{args.model}: shot"), good)
+        good, problems = predict_rows(rows, args.strength_law, args.model, ctx, _progress(f"{args.model}: shot"), good,
+                                      base=src.parent)
     except (Interrupted, KeyboardInterrupt) as err:
         where = _partial(out, {"status": "interrupted", "signal": str(err) or "SIGINT", "level": args.model,
                                "rows": len(rows), "predicted": good})
@@ -325,7 +341,7 @@ def _predict_trust(args, good):
     print(line, file=sys.stderr)
     for row in good:
         try:
-            shot = user_shot(row)
+            shot = user_shot(row, Path(args.shots).parent)
         except ValueError:   # Eq 9 predicts a row the other levels refuse (length_m shorter than the nose): no range
             continue
         for w in warnings(shot, rng):
@@ -479,14 +495,52 @@ def main(argv=None) -> int:
         return _predict(args)
     if args.command in ("dop", "simulate"):
         return _one_shot(args)
+    if args.command == "outline":
+        return _outline(args)
     try:
-        nose = make_nose(args.kind, **_keywords(args.params))
+        nose, solution = solve_nose(args.kind, _keywords(args.params))
         result = {"nstar": nstar(nose), "length": nose.length, "volume": nose.volume()}
     except (ParameterError, OSError) as err:
         print(f"error: {err}", file=sys.stderr)
         return 2
+    if solution is not None:
+        result["solved"] = {"key": solution.key, "value": solution.value, "other_values": list(solution.other_values)}
     if args.json:
         print(json.dumps(result))
     else:
-        print(f"N*      {result['nstar']:.10g}\nlength  {result['length']:.10g} m\nvolume  {result['volume']:.10g} m^3")
+        print(f"N*      {result['nstar']:.10g}\nlength  {result['length']:.10g} m\nvolume  {result['volume']:.10g} m^3"
+              + (f"\nsolved  {solution.describe()}" if solution is not None else ""))
+    return 0
+
+
+def _outline(args) -> int:
+    """Write a nose's outline as a table-nose CSV (x, y in metres) and a PNG of it and its cumulative N*."""
+    import pandas as pd
+
+    from .figures.nose_outline import draw_noses
+    from .pipeline.io import TargetError, check_target, write_csv
+    out = Path(args.out)
+    png = Path(args.png) if args.png else out.with_suffix(".png")
+    if not 2 <= args.points <= 10000:
+        return _fail(f"--points = {args.points} is not allowed: 2 <= --points <= 10000")
+    if out.suffix.lower() == ".png" or png.resolve() == out.resolve():
+        return _fail(f"--out {args.out}: allowed: a CSV path other than the PNG's ({png})")
+    try:
+        for path, name in ((out, "--out"), (png, "--png")):
+            try:
+                check_target(path)
+            except TargetError as err:
+                return _fail(f"{name} {path}: {err}")
+        nose, solution = solve_nose(args.kind, _keywords(args.params))
+        x, y = nose.outline(args.points)
+        keep = [0] + [i for i in range(1, len(x)) if (x[i], y[i]) != (x[i - 1], y[i - 1])]
+        label = f"{args.kind} " + " ".join(args.params)
+        write_csv(pd.DataFrame({"x": x[keep], "y": y[keep]}), out)
+        draw_noses({args.kind: nose}, png, _wrap(label, 0))
+    except (ParameterError, TargetError) as err:
+        return _fail(str(err))
+    except OSError as err:
+        return _fail(f"cannot write {err.filename or args.out}: {err.strerror or err}")
+    print(f"N*      {nstar(nose):.10g}\nlength  {nose.length:.10g} m\nradius  {nose.radius:.10g} m"
+          + (f"\nsolved  {solution.describe()}" if solution is not None else "") + f"\nwrote   {out}, {png}")
     return 0

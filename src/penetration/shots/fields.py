@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 from ..analytic.dop import penetration_depth
 from ..analytic.resistance import Target, strength_factor
-from ..nose.geometry import Flat, Ogive
+from ..errors import ParameterError
+from ..nose.geometry import NOSES, Flat, Ogive, TabulatedNose, make_nose
 from ..nose.nstar import nstar
 from ..units import MPA, NUMBER_FORM, parse_number
 
@@ -51,12 +52,29 @@ SHOT_FIELDS = {
 }
 # shot field of each UserShot attribute (SI)
 ATTRIBUTE_FIELDS = {f.attribute: name for name, f in SHOT_FIELDS.items() if f.attribute}
-NOSE_SHAPES = ("ogive", "hemispherical", "flat")
+NOSE_SHAPES = ("ogive", "hemispherical", "flat", "cone", "double_ogive", "minimum_nstar", "table")
 CRH_RANGE = (0.5, 1e4)
+CONSTRAINT_KEYS = ("nose_length", "nstar", "solve")   # nose.solve.CONSTRAINTS and solve=
 # the nose columns of a shots CSV: name -> what it holds
 NOSE_COLUMNS = {"nose_shape": f"one of {', '.join(NOSE_SHAPES)} (required)",
                 "crh": f"caliber-radius-head of an ogive, a number in [{CRH_RANGE[0]:g}, {CRH_RANGE[1]:g}] "
-                       "(required for nose_shape ogive, ignored otherwise)"}
+                       "(required for nose_shape ogive unless nose_length or nstar is given, ignored otherwise)",
+                "length, tip_radius": "cone: its length and flat tip's radius (m); minimum_nstar: length",
+                "S1, S2, a1, a2, alpha, tip_length": "double_ogive: its keys as nstar takes them (m, alpha in rad)",
+                "path": "table: a CSV of the outline (columns x, y in metres), relative to the shots file's folder",
+                "nose_length, nstar, solve": "a nose by constraint: one key of the row's nose left empty and solved "
+                                             "for its length (m) or its N* (python -m penetration nstar --help)"}
+# a row reads only the columns of its own nose_shape: another kind's (e.g. an ogive row's S1) pass through
+
+
+def nose_columns(shape) -> tuple:
+    """The columns of a shots CSV that a row of nose_shape ``shape`` reads."""
+    if shape in ("hemispherical", "flat"):
+        return ()
+    if shape == "table":
+        return ("path",)
+    keys = tuple(f.name for f in NOSES[shape].__dataclass_fields__.values() if f.name not in ("radius", "psi"))
+    return (("crh",) if shape == "ogive" else keys) + CONSTRAINT_KEYS
 
 
 class ShotError(ValueError):
@@ -93,16 +111,49 @@ def crh_value(value) -> float:
     return crh
 
 
-def shot_nstar(row) -> float:
-    """N* of a shot's nose from its nose_shape and crh columns."""
+def row_nose(row, radius, base=None):
+    """The nose of a shots-CSV row at shank radius ``radius`` (m; a table nose keeps its own): nose_shape and the
+    columns of nose_columns(nose_shape) that are not empty; a table's path relative to ``base`` (a folder)."""
+    from pathlib import Path
     shape = row.get("nose_shape", "")
     if shape not in NOSE_SHAPES:
         raise ShotError(f"nose_shape = {shape!r} is not allowed: one of {list(NOSE_SHAPES)}")
     if shape == "hemispherical":
-        return nstar(Ogive(0.5, 1.0))
+        return Ogive(0.5, radius)
     if shape == "flat":
-        return nstar(Flat(1.0))
-    return nstar(Ogive(crh_value(row.get("crh", "")), 1.0))
+        return Flat(radius)
+    keys = {k: row[k].strip() for k in nose_columns(shape) if (row.get(k) or "").strip()}
+    if shape == "ogive" and not any(k in keys for k in CONSTRAINT_KEYS[:2]):
+        return Ogive(crh_value(row.get("crh", "")), radius)
+    if shape == "ogive" and "crh" in keys:
+        raise refused("crh", keys["crh"], "empty for an ogive given by nose_length or nstar (its CRH is solved for)")
+    try:
+        if shape == "table":
+            path = Path(keys.get("path", ""))
+            if keys.get("path") and base is not None and not path.is_absolute():
+                path = Path(base) / path
+            return TabulatedNose.from_keywords(path=str(path) if keys.get("path") else None)
+        return make_nose(shape, radius=radius, **keys)
+    except ParameterError as err:
+        raise ShotError(str(err)) from None
+
+
+def row_radius(row, base=None):
+    """The shank radius (m) of a row: diameter_m/2 (checked), or a table nose's own where diameter_m is empty; a
+    diameter_m given with a table must be twice the table's radius."""
+    given = (row.get("diameter_m") or "").strip()
+    if row.get("nose_shape") == "table":
+        table = row_nose(row, 1.0, base)
+        if given and not math.isclose(field_value("diameter_m", given), 2.0 * table.radius, rel_tol=1e-9):
+            raise refused("diameter_m", field_value("diameter_m", given), f"twice the table's shank radius (its last y, "
+                          f"{table.radius:g} m): {2.0 * table.radius:g} m, or empty")
+        return table.radius
+    return 0.5 * field_value("diameter_m", given)
+
+
+def shot_nstar(row, base=None) -> float:
+    """N* of a shot's nose from its nose_shape and nose columns (nose_columns), at the row's shank radius."""
+    return nstar(row_nose(row, row_radius(row, base), base))
 
 
 def _number(row, name, allowed):
@@ -121,21 +172,24 @@ def field_value(name, text) -> float:
     return v
 
 
-def shot_values(row) -> dict:
+def shot_values(row, base=None) -> dict:
     """The numeric fields of a shot (in the columns' units), each checked against SHOT_FIELDS; an optional field
-    that is missing or empty is left out."""
+    that is missing or empty is left out; a table nose's row may leave diameter_m empty (row_radius)."""
     out = {}
     for name, f in SHOT_FIELDS.items():
+        if name == "diameter_m" and row.get("nose_shape") == "table":
+            out[name] = 2.0 * row_radius(row, base)
+            continue
         if not f.required and row.get(name) in (None, ""):
             continue
         out[name] = field_value(name, row.get(name, ""))
     return out
 
 
-def predicted_depth(row, law="li_chen") -> float:
+def predicted_depth(row, law="li_chen", base=None) -> float:
     """Eq 9 depth (m) of one shot row, S from the published S(fc) law ``law``."""
-    v = shot_values(row)
-    n = shot_nstar(row)
+    v = shot_values(row, base)
+    n = shot_nstar(row, base)
     fc = v["fc_MPa"] * MPA
     target = Target(v["target_density_kgm3"], fc, float(strength_factor(fc, law)))
     depth = float(penetration_depth(v["mass_kg"], 0.5 * v["diameter_m"], n, target, v["velocity_ms"]))
@@ -197,6 +251,6 @@ def row_predictions(rows, predict, errors=(ShotError,), progress=None, good=None
     return good, problems
 
 
-def eq9_columns(law="li_chen"):
+def eq9_columns(law="li_chen", base=None):
     """The analytic level's prediction of a shot row: dop_pred_m, Eq 9's depth with S from ``law``."""
-    return lambda row: {"dop_pred_m": f"{predicted_depth(row, law):.6g}"}
+    return lambda row: {"dop_pred_m": f"{predicted_depth(row, law, base):.6g}"}

@@ -42,10 +42,11 @@ from ..concrete.material import shot_concrete
 from ..concrete.size import SizeEffect, fracture_factor, regularised, resistance_factor, with_rate_law
 from ..errors import ParameterError
 from ..levels import LEVELS
-from ..nose.geometry import NOSES, Flat, Ogive, make_nose
+from ..nose.geometry import NOSES, make_nose
 from ..nose.nstar import nstar
+from ..nose.solve import CONSTRAINTS
 from .fields import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, eq9_columns, expected_depth, field_value,
-                     output_fields as shots_output_fields, row_predictions, shot_nstar, shot_values)
+                     output_fields as shots_output_fields, row_nose, row_predictions, shot_values)
 
 TRAJECTORY_EFFECTS = ("crater", "static", "inertial")
 CAVITY_EFFECTS = ("crater", "cavity")
@@ -316,15 +317,6 @@ def run(shot: UserShot, level: str, ctx: Context, log=None) -> LevelResult:
     return res
 
 
-def nose_of_row(shape, crh, radius):
-    """The nose of a shots-CSV row (ogive of its CRH, hemispherical, flat) at shank radius ``radius``."""
-    if shape == "hemispherical":
-        return Ogive(0.5, radius)
-    if shape == "flat":
-        return Flat(radius)
-    return Ogive(crh, radius)
-
-
 # ------------------------------------------------------------------ shots CSV rows at any level
 def _si(values: dict) -> dict:
     """UserShot keyword arguments (SI) from shot field values in their units (those given)."""
@@ -332,15 +324,14 @@ def _si(values: dict) -> dict:
             if SHOT_FIELDS[name].attribute}
 
 
-def user_shot(row) -> UserShot:
+def user_shot(row, base=None) -> UserShot:
     """The UserShot of a shots-CSV row (fields checked as shots.shot_values does; length_m, when the row has it,
-    for the fe level)."""
-    v = shot_values(row)
-    shot_nstar(row)  # checks nose_shape and crh
-    crh = crh_value(row["crh"]) if row.get("nose_shape") == "ogive" else None
+    for the fe level; the nose from nose_shape and its columns, shots.fields.row_nose, a table's path relative to
+    ``base``)."""
+    v = shot_values(row, base)
+    nose = row_nose(row, 0.5 * v["diameter_m"], base)
     try:
-        return UserShot(nose_of_row(row["nose_shape"], crh, 0.5 * v["diameter_m"]), **_si(v),
-                        label=row.get("shot_id", ""))
+        return UserShot(nose, **_si(v), label=row.get("shot_id", ""))
     except ValueError as err:
         raise ShotError(str(err)) from None
 
@@ -352,11 +343,12 @@ FORMER_KEYS = {"mass": "mass_kg", "velocity": "velocity_ms", "fc": "fc_MPa", "de
 
 def nose_keys(kind) -> list:
     """The keys of a nose kind on dop and simulate's command line: its own (as nstar takes them) minus radius,
-    which is diameter_m/2 (an ogive's psi may also be given as crh, the shots CSV's name)."""
+    which is diameter_m/2 (an ogive's psi may also be given as crh, the shots CSV's name), and the constraints of a
+    nose by constraint (nose.solve.CONSTRAINTS, solve) for every kind with a free parameter."""
     if kind == "table":
         return ["path"]
     keys = [f.name for f in dataclasses.fields(NOSES[kind]) if f.name != "radius"]
-    return keys + (["crh"] if kind == "ogive" else [])
+    return keys + (["crh"] if kind == "ogive" else []) + ([*CONSTRAINTS, "solve"] if kind != "flat" else [])
 
 
 def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
@@ -425,21 +417,22 @@ def output_fields(fields, level="analytic"):
     return [f for f in fields if f not in PREDICTED] + PREDICTED
 
 
-def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None, good=None):
+def predict_rows(rows, law="li_chen", level="analytic", ctx=None, progress=None, good=None, base=None):
     """Predictions for shot rows at any level: (rows with the predicted columns added, 'row N: reason' per skipped
     row), as fields.eq9_columns for the analytic level (dop_pred_m only: Eq 9); the other levels add the time to
     rest, the peak deceleration and the wall time of each shot and need ``ctx``. A run that fails (an unstable
     FE run) skips its row with the reason. ``progress(i, n)`` is called after each row. ``good``: a list the
-    predicted rows are appended to as they come (an interrupted run keeps them there).
+    predicted rows are appended to as they come (an interrupted run keeps them there). ``base``: the folder a table
+    nose's path is relative to (the shots file's).
     """
     if level == "analytic" and (ctx is None or ctx.size is None):
-        return row_predictions(rows, eq9_columns(law))
+        return row_predictions(rows, eq9_columns(law, base))
     if level == "analytic":   # with the scale effect: the ladder's analytic level, S x the effect's factor per shot
-        return row_predictions(rows, lambda row: {"dop_pred_m": f"{run(user_shot(row), level, ctx).depth_m:.6g}"},
+        return row_predictions(rows, lambda row: {"dop_pred_m": f"{run(user_shot(row, base), level, ctx).depth_m:.6g}"},
                                (ShotError, ValueError), progress, good)
 
     def predict(row):
-        res = run(user_shot(row), level, ctx)
+        res = run(user_shot(row, base), level, ctx)
         return {"model": level, "dop_pred_m": f"{res.depth_m:.6g}", "time_to_rest_pred_s": f"{res.time_to_rest_s:.6g}",
                 "peak_deceleration_pred_m_s2": f"{res.peak_deceleration_m_s2:.6g}",
                 "wall_time_s": f"{res.wall_time_s:.4g}"}
