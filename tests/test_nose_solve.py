@@ -66,8 +66,9 @@ def test_minimum_nstar_by_nstar():
     assert isinstance(nose, MinimumNstar) and nstar(nose) == pytest.approx(0.05, rel=1e-9)
 
 
-def test_make_nose_takes_a_constraint():
-    assert make_nose("ogive", radius="0.0125", nose_length=str(A * math.sqrt(23))).psi == pytest.approx(6.0)
+def test_keys_as_text_as_the_command_line_gives_them():
+    nose, _ = solve_nose("ogive", {"radius": "0.0125", "nose_length": repr(A * math.sqrt(23))})
+    assert nose.psi == pytest.approx(6.0) and nose == make_nose("ogive", radius="0.0125", psi=str(nose.psi))
 
 
 @pytest.mark.parametrize("kind,params,needle", [

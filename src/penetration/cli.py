@@ -536,7 +536,8 @@ def _outline(args) -> int:
         keep = [0] + [i for i in range(1, len(x)) if (x[i], y[i]) != (x[i - 1], y[i - 1])]
         label = f"{args.kind} " + " ".join(args.params)
         write_csv(pd.DataFrame({"x": x[keep], "y": y[keep]}), out)
-        draw_noses({args.kind: nose}, png, _wrap(label, 0))
+        from .nose.nstar import cumulative_nstar
+        draw_noses({args.kind: cumulative_nstar(nose, 120)}, png, _wrap(label, 0))
     except (ParameterError, TargetError) as err:
         return _fail(str(err))
     except OSError as err:

@@ -233,6 +233,21 @@ use rule accuracy_trajectory as validation_levels with:
     log: "results/logs/validation_levels_{profile}.log",
 
 
+# Each level's error on a contrast between two noses, on the development shots' measured nose pairs (a study: it
+# reads validation_levels' committed predictions).
+rule validation_nose_pairs:
+    input: **task("tasks.levels"), shots="figures/fe/{profile}/validation_levels.csv",
+           summary="figures/fe/{profile}/validation_levels_summary.csv",
+    output: csv="figures/fe/{profile}/validation_nose_pairs.csv",
+            summary="figures/fe/{profile}/validation_nose_pairs_summary.csv",
+    wildcard_constraints: profile="full|ci",
+    threads: 1
+    resources: mem_mb=1000, runtime=5
+    benchmark: "results/benchmarks/validation_nose_pairs_{profile}.tsv"
+    log: "results/logs/validation_nose_pairs_{profile}.log",
+    script: "../scripts/run_task.py"
+
+
 rule hjc_scaling:
     input: **task("tasks.levels"), shots=config["validation"]["shots"],
            reference=config["reference"], sets="workflow/data/hjc_sets.csv",

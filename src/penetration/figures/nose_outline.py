@@ -6,13 +6,12 @@ from .common import figure, save
 COLORS = ("tab:red", "tab:blue", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:gray", "tab:olive")
 
 
-def draw_noses(noses: dict, path, title: str, dpi=150):
-    """Write a PNG of ``noses`` (label -> nose): outline in mm and cumulative N* against the distance from the tip."""
-    from ..nose.nstar import cumulative_nstar
+def draw_noses(curves: dict, path, title: str, dpi=150):
+    """Write a PNG of noses (``curves``: label -> (x, y, cumulative N*) from the tip, m, as
+    nose.nstar.cumulative_nstar gives them): outline in mm and cumulative N* against the distance from the tip."""
     fig, (ax, bx) = figure(2, 5.0, 3.8)
-    for i, (label, nose) in enumerate(noses.items()):
+    for i, (label, (x, y, n)) in enumerate(curves.items()):
         c = COLORS[i % len(COLORS)]
-        x, y, n = cumulative_nstar(nose, 120)
         ax.plot(1e3 * x, 1e3 * y, color=c, label=label)
         ax.plot(1e3 * x, -1e3 * y, color=c)
         bx.plot(1e3 * x, n, color=c, label=f"{label}: N* = {n[-1]:.4g}")

@@ -657,9 +657,8 @@ def with_radius(nose, radius: float):
 
 
 def make_nose(kind: str, **params):
-    """Build a registered nose by kind name from keyword parameters; with a constraint (nose_length= or nstar=,
-    nose.solve.CONSTRAINTS) the one key left out is solved for (nose.solve.solve_nose)."""
+    """Build a registered nose by kind name from keyword parameters (a nose by constraint: nose.solve.solve_nose)."""
     if kind not in NOSES:
         raise ParameterError("nose", "kind", kind, f"one of {sorted(NOSES)}")
-    from .solve import solve_nose
-    return solve_nose(kind, params)[0]
+    cls = NOSES[kind]
+    return cls.from_keywords(**params)

@@ -60,8 +60,10 @@ def levels(read) -> str:
     summary = [r for r in _rows(read, "figures/fe/full/validation_levels_summary.csv") if r["primary"] == "True"]
     walls = {r["level"]: r for r in _rows(read, "figures/timing/validation_levels_full.csv")}
     eq9 = next(r for r in _rows(read, "figures/timing/accuracy_cost.csv") if r["level"] == "analytic")
+    pairs = {(r["level"], r["calibration"]): r for r in _rows(read, "figures/fe/full/validation_nose_pairs_summary.csv")}
     lines = ["| `--model` | calibration | cost per shot | depth error (scored on): median, 90th percentile, mean | "
-             "slope of ln(predicted/measured) with ln fc, inside each series (90 %) |", "|---|---|---|---|---|"]
+             "nose-pair contrast error: median, 90th percentile, mean | "
+             "slope of ln(predicted/measured) with ln fc, inside each series (90 %) |", "|---|---|---|---|---|---|"]
     for a in summary:
         level = a["level"]
         if level == "analytic":
@@ -70,15 +72,27 @@ def levels(read) -> str:
             w = walls[level]
             cost = f"{_span(w['median_wall_time_per_shot_s'])} (up to {_span(w['max_wall_time_per_shot_s'])})"
         default = " (default)" if a["calibration"] == "laboratory" else ""
+        p = pairs[(level, a["calibration"])]
         lines.append(f"| `{level}` | {a['calibration']}{default} | {cost} | {_pct(a['median_abs_rel_err'])}, "
                      f"{_pct(a['p90_abs_rel_err'])}, {float(a['mean_rel_err']) * 100:+.0f} % ({a['scoring']}, "
-                     f"{a['shots']} shots) | {_ci(a, 'slope_ln_fc_within_series')} |")
+                     f"{a['shots']} shots) | {_pct(p['median_abs_contrast_error'])}, {_pct(p['p90_abs_contrast_error'])}, "
+                     f"{float(p['mean_contrast_error']) * 100:+.0f} % | {_ci(a, 'slope_ln_fc_within_series')} |")
     lines += ["", f"Scope: the development shots, {_scope(read)}; the command line warns about every quantity of a "
               "shot outside these ranges. Costs: median (largest) wall time per development shot in the committed build "
               "(`figures/timing/validation_levels_full.csv`; Eq 9: `figures/timing/accuracy_cost.csv`); errors: "
               "`figures/fe/full/validation_levels_summary.csv` (fe at the default mesh). A positive mean is too deep; "
-              "a negative slope means the level goes too deep in weak concrete and too shallow in strong."]
+              "a negative slope means the level goes too deep in weak concrete and too shallow in strong. The nose-pair "
+              "contrast error is (predicted/measured depth of the sharper nose) / (that of the blunter) - 1 over the "
+              f"development shots' pairs of different noses in one series ({_pair_scope(pairs)}; "
+              "`figures/fe/full/validation_nose_pairs_summary.csv`): the series' own bias cancels, what is left is "
+              "the level's error on the contrast a user compares; negative: the level understates the sharper nose's "
+              "gain."]
     return "\n".join(lines) + "\n"
+
+
+def _pair_scope(pairs) -> str:
+    r = next(iter(pairs.values()))
+    return f"{r['pairs']} pairs of {r['shots']} shots in {r['series']} series, {r['noses']}"
 
 
 # the laboratory validation's goal for the 90th percentile of |error| out of sample (its median's goal is the

@@ -16,7 +16,8 @@ from dataclasses import dataclass
 from ..analytic.dop import penetration_depth
 from ..analytic.resistance import Target, strength_factor
 from ..errors import ParameterError
-from ..nose.geometry import NOSES, Flat, Ogive, TabulatedNose, make_nose
+from ..nose.geometry import NOSES, Flat, Ogive, TabulatedNose
+from ..nose.solve import solve_nose
 from ..nose.nstar import nstar
 from ..units import MPA, NUMBER_FORM, parse_number
 
@@ -133,7 +134,7 @@ def row_nose(row, radius, base=None):
             if keys.get("path") and base is not None and not path.is_absolute():
                 path = Path(base) / path
             return TabulatedNose.from_keywords(path=str(path) if keys.get("path") else None)
-        return make_nose(shape, radius=radius, **keys)
+        return solve_nose(shape, {"radius": radius, **keys})[0]
     except ParameterError as err:
         raise ShotError(str(err)) from None
 

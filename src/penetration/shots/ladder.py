@@ -42,9 +42,9 @@ from ..concrete.material import shot_concrete
 from ..concrete.size import SizeEffect, fracture_factor, regularised, resistance_factor, with_rate_law
 from ..errors import ParameterError
 from ..levels import LEVELS
-from ..nose.geometry import NOSES, make_nose
+from ..nose.geometry import NOSES
 from ..nose.nstar import nstar
-from ..nose.solve import CONSTRAINTS
+from ..nose.solve import CONSTRAINTS, solve_nose
 from .fields import (ATTRIBUTE_FIELDS, SHOT_FIELDS, ShotError, crh_value, eq9_columns, expected_depth, field_value,
                      output_fields as shots_output_fields, row_nose, row_predictions, shot_values)
 
@@ -397,12 +397,12 @@ def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
             raise ParameterError("ogive", "crh", kw["crh"], err.allowed) from None
         del kw["crh"]
     if kind == "table":
-        nose = make_nose(kind, **kw)
+        nose = solve_nose(kind, kw)[0]
         if "diameter_m" in values and not math.isclose(values["diameter_m"], 2.0 * nose.radius, rel_tol=1e-9):
             raise ParameterError("shot", "diameter_m", values["diameter_m"], f"twice the table's shank radius (its "
                                  f"last y, {nose.radius:g} m): {2.0 * nose.radius:g} m, or leave diameter_m out")
     else:
-        nose = make_nose(kind, radius=0.5 * values["diameter_m"], **kw)
+        nose = solve_nose(kind, {"radius": 0.5 * values["diameter_m"], **kw})[0]
     return UserShot(nose, **_si(values), label=label, defaults=tuple(defaults))
 
 

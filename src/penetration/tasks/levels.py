@@ -305,3 +305,21 @@ def sweep_level(inputs, outputs, params):
         print(f"{params.level}: {k + 1}/{n} shots ({name} at {v:g} m/s: {r.depth_m:.4g} m)", flush=True)
     write_csv(pd.DataFrame(rows), outputs.csv)
 
+
+
+@task
+def validation_nose_pairs(inputs, outputs, params):
+    """Each level's error on the contrast between two noses, scored on the development shots' measured nose pairs
+    (studies.nose_pairs) from the levels' predictions of validation_levels (their primary scoring)."""
+    from ..studies import nose_pairs
+    shots = pd.read_csv(inputs.shots)
+    levels = pd.read_csv(inputs.summary)
+    levels = levels[levels.primary.astype(str) == "True"]
+    predictions = {(r.level, r.calibration): f"dop_{r.predictions}_m" for r in levels.itertuples()}
+    table = nose_pairs.pairs(shots, {f"{lv}|{cal}": col for (lv, cal), col in predictions.items()})
+    table[["level", "calibration"]] = table.level.str.split("|", n=1, expand=True)
+    summary = nose_pairs.summary(table.assign(level=table.level + "|" + table.calibration))
+    summary[["level", "calibration"]] = summary.level.str.split("|", n=1, expand=True)
+    first = ["level", "calibration"]
+    write_csv(table[first + [c for c in table.columns if c not in first]], outputs.csv)
+    write_csv(summary[first + [c for c in summary.columns if c not in first]], outputs.summary)
