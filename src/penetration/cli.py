@@ -171,7 +171,51 @@ def _parser():
     _level_options(pr, "level of the fidelity ladder (default analytic: Eq 9, adds dop_pred_m; the other levels add "
                        "model, dop_pred_m, time_to_rest_pred_s, peak_deceleration_pred_m_s2, wall_time_s)")
     pr.add_argument("--out", required=True, help="output CSV: the input rows that could be predicted, plus the predictions")
+    _compare_parser(sub)
     return p
+
+
+def _compare_parser(sub):
+    from .shots.compare import MAX_MEMBERS, SHOT_KEYS
+    c = sub.add_parser("compare", help="several noses at one projectile and target: depths and each nose's contrast "
+                       "against a reference nose with its uncertainty, per level, as a CSV and a figure",
+                       formatter_class=argparse.RawDescriptionHelpFormatter, epilog=_wrap(
+                           "example: compare --nose 'crh3=ogive crh=3' --nose 'crh6=ogive crh=6' --nose 'do=double_ogive "
+                           "S1=0.05 a1=0.005 a2=0.01 nose_length=0.05995' --nose 'cone=cone length=0.05995' --reference "
+                           "crh3 --velocities 400:1000:100 --levels analytic,cavity,fe mass_kg=0.5 diameter_m=0.025 "
+                           "length_m=0.2 fc_MPa=40 --out study/. A nose is 'LABEL=KIND key=value ...' with the keys of "
+                           "dop's noses (no radius: diameter_m/2), by constraint too (nose_length=, nstar=). Shot keys: "
+                           f"{', '.join(SHOT_KEYS)} (as dop's). --study FILE.yaml gives the same as keys noses (label: "
+                           "{kind: ..., key: value}), reference, shot, velocities, levels, members, mesh_check, title; "
+                           "options given on the command line win. Writes OUT/compare.csv (one row per level, nose and "
+                           "velocity: depth, contrast, u_validated, u_calibration, u_chaos, u_mesh, u_combined and the "
+                           "parts it holds), OUT/compare.png, OUT/noses.csv and OUT/noses.png. Only the calibrations a "
+                           "chosen level needs are read (committed records: nothing is fitted); the command says which.")
+                       + "\n\n" + _wrap(LEVELS_EPILOG))
+    c.add_argument("params", nargs="*", metavar="key=value", help="shot keys")
+    c.add_argument("--study", default=None, help="a study YAML (see below)")
+    c.add_argument("--nose", action="append", default=None, metavar="'LABEL=KIND key=value ...'",
+                   help="a nose (give 2-12)")
+    c.add_argument("--reference", default=None, help="label of the nose the contrasts are taken against (default: "
+                   "the first)")
+    c.add_argument("--velocities", default=None, help="m/s: a list 400,600,800 or a range 400:1000:100 (ends included)")
+    c.add_argument("--levels", default=None, help="comma-separated levels (default analytic)")
+    c.add_argument("--members", type=int, default=None, help=f"fe level: realisations at the top velocity for the "
+                   f"chaos band (default 2; 2-{MAX_MEMBERS})")
+    c.add_argument("--mesh-check", action="store_true", default=None, help="fe level: add the other mesh profile's "
+                   "contrast at the top velocity (the full mesh costs about 10-70 times the ci mesh)")
+    c.add_argument("--workers", type=int, default=None, help="fe shots run this many at a time (default: the cores)")
+    c.add_argument("--out", required=True, help="folder to write the comparison into")
+    c.add_argument("--strength-law", choices=["li_chen", "forrestal"], default="li_chen",
+                   help="published S(fc) relation of the analytic and trajectory levels (default li_chen)")
+    c.add_argument("--root", default=DEFAULT_ROOT, help=f"pipeline directory (default {DEFAULT_ROOT})")
+    c.add_argument("--profile", choices=["full", "ci"], default="ci", help="fe mesh profile (default ci: 3 elements "
+                   "across the shank radius; full, 8 across, costs about 10-70 times more)")
+    c.add_argument("--calibration", default="laboratory", choices=["laboratory", "do1"],
+                   help="calibration of the cavity and fe levels (default laboratory); the other one gives the "
+                        "contrast's calibration part")
+    c.add_argument("--max-minutes", type=_option_number, default=DEFAULT_MAX_MINUTES,
+                   help=f"fe level: refuse a shot estimated above this (default {DEFAULT_MAX_MINUTES:g})")
 
 
 def _keywords(pairs):
@@ -497,6 +541,8 @@ def main(argv=None) -> int:
         return _one_shot(args)
     if args.command == "outline":
         return _outline(args)
+    if args.command == "compare":
+        return _compare(args)
     try:
         nose, solution = solve_nose(args.kind, _keywords(args.params))
         result = {"nstar": nstar(nose), "length": nose.length, "volume": nose.volume()}
@@ -511,6 +557,94 @@ def main(argv=None) -> int:
         print(f"N*      {result['nstar']:.10g}\nlength  {result['length']:.10g} m\nvolume  {result['volume']:.10g} m^3"
               + (f"\nsolved  {solution.describe()}" if solution is not None else ""))
     return 0
+
+
+def _velocities(text):
+    """Velocities (m/s) from 'a,b,c' or 'start:stop:step' (ends included)."""
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise ParameterError("argument", "--velocities", text, "a list a,b,c or a range start:stop:step")
+        a, b, step = (parse_number(x) for x in parts)
+        if not (step > 0 and b >= a):
+            raise ParameterError("argument", "--velocities", text, "start <= stop and step > 0")
+        n = int(round((b - a) / step))
+        if n > 1000:
+            raise ParameterError("argument", "--velocities", text, "at most 50 velocities")
+        return tuple(a + k * step for k in range(n + 1) if a + k * step <= b * (1 + 1e-12))
+    return tuple(parse_number(x) for x in text.split(","))
+
+
+def _study(args):
+    """The Study of compare's options and --study file (options win)."""
+    from .pipeline.config import load_with
+    from .shots.compare import parse_nose, study_from_doc
+    doc = load_with(Path(args.study), {}) if args.study else {}
+    noses = None
+    if args.nose:
+        noses = {}
+        for text in args.nose:
+            label, kind, keys = parse_nose(text)
+            if label in noses:
+                raise ParameterError("argument", "--nose", label, "each label once")
+            noses[label] = (kind, keys)
+    return study_from_doc(doc, f"study {args.study}", noses=noses, shot=_keywords(args.params),
+                          velocities=_velocities(args.velocities) if args.velocities else None,
+                          levels=tuple(args.levels.split(",")) if args.levels else None, members=args.members,
+                          mesh_check=args.mesh_check, reference=args.reference)
+
+
+def _compare(args) -> int:
+    """Run a nose comparison and write its table, its figure and its noses (shots.compare)."""
+    from .pipeline.io import TargetError, check_target, write_csv
+    from .shots import compare as C
+    out = Path(args.out)
+    files = C.output_files(out)
+    say = lambda line: print(line, file=sys.stderr, flush=True)  # noqa: E731
+    try:
+        if out.exists() and not out.is_dir():
+            return _fail(f"--out {args.out} is a file; allowed: a folder (new or existing)")
+        for path in files.values():
+            check_target(path)
+        study = _study(args)
+        noses, ctxs, validated = C.prepare(study, args.root, args.profile, args.strength_law, args.calibration,
+                                           60.0 * args.max_minutes, say)
+    except TargetError as err:
+        return _fail(f"--out {args.out}: {err}")
+    except (ParameterError, ConfigError, OSError) as err:
+        return _fail(str(err))
+    jobs = C.plan(study)
+    workers = C.with_workers(args.workers)
+    say(f"compare: {len(jobs)} runs ({sum(j.level == 'fe' for j in jobs)} at the fe level, {workers} at a time)")
+    done = []
+    _interruptible()
+    t0 = time.perf_counter()
+    try:
+        C.run_jobs(study, noses, ctxs, jobs, workers, _progress("compare: run"), done)
+    except (Interrupted, KeyboardInterrupt) as err:
+        table = C.tabulate(study, noses, done, validated, args.calibration, args.strength_law, ctxs)
+        where = Path(f"{files['compare.csv']}.partial.csv")
+        try:
+            write_csv(table, where)
+        except OSError:
+            where = None
+        say(f"interrupted ({err or 'SIGINT'}) after {len(done)} of {len(jobs)} runs"
+            + (f"; partial table {where}" if where else ""))
+        return 130
+    failed = [(j, e) for j, _, _, e in done if e]
+    for j, e in failed:
+        say(f"warning: {j.level} {j.variant} {j.nose} {j.velocity:g} m/s failed: {e}")
+    table = C.tabulate(study, noses, done, validated, args.calibration, args.strength_law, ctxs)
+    try:
+        from .figures.compare import write_comparison
+        write_comparison(files, table, **C.drawing(study, noses, _wrap))
+    except TargetError as err:
+        return _fail(f"--out {args.out}: {err}")
+    except OSError as err:
+        return _fail(f"cannot write into --out {args.out}: {err.strerror or err}")
+    say(f"compared {len(noses)} noses at {len(study.velocities)} velocities and {len(study.levels)} levels in "
+        f"{time.perf_counter() - t0:.1f} s; wrote {', '.join(str(p) for p in files.values())}")
+    return 0 if not failed else 1
 
 
 def _outline(args) -> int:

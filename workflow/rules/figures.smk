@@ -330,6 +330,25 @@ rule sweep:
     input: rules.sweep_figures.output,
 
 
+# A user's nose study (not part of `all`): `snakemake -c2 results/compare/NAME/compare.csv` runs the study
+# workflow/compare/NAME.yaml (`python -m penetration compare --help`); `snakemake -c2 compare --config
+# compare=NAME` the same. It reads the committed calibrations and nose-pair validation from disk.
+rule compare_study:
+    input: **task("tasks.compare"), study="workflow/compare/{name}.yaml",
+    output: csv="results/compare/{name}/compare.csv", png="results/compare/{name}/compare.png",
+            noses="results/compare/{name}/noses.csv", noses_png="results/compare/{name}/noses.png",
+    params: profile="ci", workers=2,
+    threads: 2
+    resources: mem_mb=2000, runtime=30
+    benchmark: "results/benchmarks/compare_study_{name}.tsv"
+    log: "results/logs/compare_study_{name}.log",
+    script: "../scripts/run_task.py"
+
+
+rule compare:
+    input: f"results/compare/{config.get('compare', 'nose_study')}/compare.csv",
+
+
 # The scale effect at one level (a study): its one factor calibrated on the laboratory shots with each variant of
 # config scale_effect (concrete/size.py) and without it, scored by leaving each series out, and DO1 predicted. The
 # cavity level and the fe level at scale_effect.fe_profile read their grids in committed pieces, one per variant and

@@ -1,0 +1,440 @@
+"""A user's nose study: several noses, one projectile and target, velocities and levels -> depths, each nose's
+contrast against a reference nose, and the contrast's uncertainty with its parts named.
+
+The contrast of nose X at a level and velocity is depth(X) / depth(reference), both from that level. Its
+uncertainty has up to four parts, each a column (relative to the contrast; empty where a part is not included, and
+the ``parts`` column names what the combined value holds):
+
+* ``u_validated``: the level's median |contrast error| on the development shots' measured nose pairs
+  (figures/fe/PROFILE/validation_nose_pairs_summary.csv, studies.nose_pairs): what the level got wrong about the
+  one measured contrast (CRH 6 against CRH 3, one 76.2 mm series), carried over to the user's noses as a scale.
+* ``u_calibration``: the contrast's change under the level's other calibration (analytic and trajectory: the other
+  published S law; cavity and fe: DO1's calibration against the laboratory one); the fe level's at the top
+  velocity only, applied as a relative value at every velocity.
+* ``u_chaos`` (fe): the standard deviation of the contrast over ``members`` realisations (the velocity moved by
+  k x 1e-9, as the FE chaos studies do) at the top velocity, applied at every velocity; with 2 members it is one
+  difference, a rough estimate.
+* ``u_mesh`` (fe, with ``mesh_check``): the contrast's change from the study's mesh to the other profile's at the
+  top velocity (the full mesh costs about 10-70 times the ci mesh's).
+
+``u_combined`` is their root sum of squares (the parts included): a scale of the contrast's uncertainty, not a
+confidence interval.
+"""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..errors import ParameterError
+from ..levels import LEVELS
+from ..nose.nstar import nstar
+from ..nose.solve import solve_nose
+from .fields import SHOT_FIELDS, field_value
+
+MEMBER_STEP = 1e-9          # relative velocity step between realisations (the FE chaos studies' perturbation)
+MAX_NOSES, MAX_VELOCITIES, MAX_MEMBERS = 12, 50, 10
+SHOT_KEYS = ("mass_kg", "diameter_m", "length_m", "fc_MPa", "target_density_kgm3")
+OTHER_LAW = {"li_chen": "forrestal", "forrestal": "li_chen"}
+
+
+@dataclass(frozen=True)
+class Study:
+    """What a comparison needs: noses (label -> (kind, keys as nstar takes them, without radius)), the reference
+    nose's label, the shot keys (SHOT_KEYS, in their units), velocities (m/s) and levels."""
+    noses: dict
+    reference: str
+    shot: dict
+    velocities: tuple
+    levels: tuple = ("analytic",)
+    members: int = 2
+    mesh_check: bool = False
+    title: str = ""
+
+    def __post_init__(self):
+        if not 2 <= len(self.noses) <= MAX_NOSES:
+            raise ParameterError("compare", "noses", len(self.noses), f"2 to {MAX_NOSES} noses")
+        if self.reference not in self.noses:
+            raise ParameterError("compare", "reference", self.reference, f"one of the noses' labels {list(self.noses)}")
+        if not 1 <= len(self.velocities) <= MAX_VELOCITIES:
+            raise ParameterError("compare", "velocities", len(self.velocities), f"1 to {MAX_VELOCITIES} velocities")
+        for v in self.velocities:
+            field_value("velocity_ms", repr(float(v)))   # in the shot field's range
+        if len(set(self.velocities)) != len(self.velocities):
+            raise ParameterError("compare", "velocities", list(self.velocities), "each velocity once")
+        for lv in self.levels:
+            if lv not in LEVELS:
+                raise ParameterError("compare", "levels", lv, f"levels among {list(LEVELS)}")
+        if not self.levels or len(set(self.levels)) != len(self.levels):
+            raise ParameterError("compare", "levels", list(self.levels), "at least one level, each once")
+        if not 2 <= self.members <= MAX_MEMBERS:
+            raise ParameterError("compare", "members", self.members, f"2 <= members <= {MAX_MEMBERS} (realisations "
+                                 "of the fe level's chaos at the top velocity)")
+        unknown = sorted(set(self.shot) - set(SHOT_KEYS))
+        if unknown:
+            raise ParameterError("compare", unknown[0], self.shot[unknown[0]], f"a shot key among {list(SHOT_KEYS)}")
+        if "fe" in self.levels and "length_m" not in self.shot:
+            raise ParameterError("compare", "length_m", None, "required at the fe level: the projectile's length (m)")
+
+
+STUDY_KEYS = ("noses", "reference", "shot", "velocities", "levels", "members", "mesh_check", "title")
+
+
+def study_from_doc(doc, where="study", **override) -> Study:
+    """A Study from a study YAML's mapping (STUDY_KEYS); ``override``: values given elsewhere (the command line's
+    options), None where not given."""
+    doc = doc or {}
+    if not isinstance(doc, dict):
+        raise ParameterError(where, "contents", type(doc).__name__, f"a mapping of keys {', '.join(STUDY_KEYS)}")
+    unknown = sorted(set(doc) - set(STUDY_KEYS))
+    if unknown:
+        raise ParameterError(where, unknown[0], doc[unknown[0]], f"a key among {', '.join(STUDY_KEYS)}")
+    noses = override.get("noses")
+    if noses is None:
+        noses = {}
+        for label, spec in (doc.get("noses") or {}).items():
+            if not isinstance(spec, dict) or "kind" not in spec:
+                raise ParameterError(where, f"noses.{label}", spec, "a mapping with kind and the nose's keys")
+            noses[str(label)] = (spec["kind"], {k: str(v) for k, v in spec.items() if k != "kind"})
+    shot = {k: str(v) for k, v in (doc.get("shot") or {}).items()}
+    shot.update(override.get("shot") or {})
+    pick = lambda key, default: override[key] if override.get(key) is not None else doc.get(key, default)  # noqa: E731
+    try:
+        velocities = tuple(float(v) for v in pick("velocities", ()))
+        members = int(pick("members", 2))
+    except (TypeError, ValueError):
+        raise ParameterError(where, "velocities or members", doc.get("velocities"), "numbers") from None
+    return Study(noses=noses, reference=str(pick("reference", None) or next(iter(noses), "")), shot=shot,
+                 velocities=velocities, levels=tuple(pick("levels", ("analytic",))), members=members,
+                 mesh_check=bool(pick("mesh_check", False)), title=str(pick("title", "")))
+
+
+def parse_nose(text: str):
+    """(label, kind, keys) of a nose given as 'LABEL=KIND key=value ...' (or 'KIND key=value ...': the kind is
+    the label)."""
+    words = text.split()
+    if not words:
+        raise ParameterError("compare", "nose", text, "'LABEL=KIND key=value ...'")
+    head, rest = words[0], words[1:]
+    label, _, kind = head.partition("=") if "=" in head else (head, "", head)
+    keys = {}
+    for w in rest:
+        k, sep, v = w.partition("=")
+        if not sep or not k:
+            raise ParameterError("compare", f"nose {label}", w, "key=value")
+        if k in keys:
+            raise ParameterError("compare", f"nose {label}", k, "each key once")
+        keys[k] = v
+    return label, kind, keys
+
+
+def build_noses(study: Study):
+    """label -> (the nose at the study's shank radius, its Solution or None)."""
+    radius = 0.5 * field_value("diameter_m", str(study.shot["diameter_m"]))
+    out = {}
+    for label, (kind, keys) in study.noses.items():
+        if kind == "table":
+            raise ParameterError("compare", f"nose {label}", kind, "a nose kind with keys (outline a table's nose "
+                                 "by its parameters; every nose of a comparison has the study's shank radius)")
+        if "radius" in keys:
+            raise ParameterError("compare", f"nose {label}", "radius", "no radius: the shank radius is diameter_m/2")
+        keys = dict(keys)
+        if kind == "ogive" and "crh" in keys:
+            keys["psi"] = keys.pop("crh")
+        out[label] = solve_nose(kind, {"radius": radius, **keys})
+    return out
+
+
+def shots(study: Study, noses: dict, velocity: float, member: int = 0):
+    """label -> levels.UserShot at ``velocity`` (moved by member x MEMBER_STEP, relative)."""
+    from .ladder import UserShot
+    values = {k: field_value(k, str(v)) * SHOT_FIELDS[k].si for k, v in study.shot.items()}
+    kw = {"mass": values["mass_kg"], "fc": values["fc_MPa"],
+          "density": values.get("target_density_kgm3", SHOT_FIELDS["target_density_kgm3"].default),
+          "length": values.get("length_m")}
+    v = float(velocity) * (1.0 + member * MEMBER_STEP)
+    return {label: UserShot(nose, velocity=v, label=f"{label} {velocity:g} m/s", **kw)
+            for label, (nose, _) in noses.items()}
+
+
+@dataclass
+class Job:
+    level: str
+    variant: str        # base, member K, calibration, mesh
+    nose: str
+    velocity: float
+    member: int = 0
+
+
+def plan(study: Study) -> list:
+    """Every run of the comparison: each level, nose and velocity (base), and at the top velocity the calibration
+    alternative of each level, the fe level's extra members and, with mesh_check, its other mesh."""
+    top = max(study.velocities)
+    jobs = [Job(lv, "base", n, v) for lv in study.levels for v in study.velocities for n in study.noses]
+    for lv in study.levels:
+        vs = study.velocities if lv != "fe" else (top,)
+        jobs += [Job(lv, "calibration", n, v) for v in vs for n in study.noses]
+        if lv == "fe":
+            jobs += [Job(lv, f"member {k}", n, top, k) for k in range(1, study.members) for n in study.noses]
+            if study.mesh_check:
+                jobs += [Job(lv, "mesh", n, top) for n in study.noses]
+    return jobs
+
+
+@dataclass
+class Contexts:
+    """The levels' contexts of each variant: 'base', 'calibration' (the other calibration), 'mesh' (fe's other
+    profile); named as the table says them."""
+    by_variant: dict
+    names: dict = field(default_factory=dict)   # (level, variant) -> what the variant is
+
+    def get(self, level, variant):
+        key = "base" if variant.startswith("member") else variant
+        return self.by_variant[key]
+
+
+def contexts(root, profile, strength_law, calibration, levels, mesh_check, fe_max_seconds=math.inf):
+    """Contexts for the variants the plan uses, from the pipeline under ``root``."""
+    from .ladder import Context
+    from .records import context_from_pipeline
+    need_sim = any(lv in ("cavity", "fe") for lv in levels)
+    base = context_from_pipeline(root, profile, strength_law, calibration) if need_sim else Context(
+        strength_law=strength_law)
+    other_cal = "do1" if calibration == "laboratory" else "laboratory"
+    alt = context_from_pipeline(root, profile, OTHER_LAW[strength_law], other_cal) if need_sim else Context(
+        strength_law=OTHER_LAW[strength_law])
+    if need_sim:
+        # the closed forms' alternative is the other S law; the simulation levels' the other calibration
+        alt_cal = context_from_pipeline(root, profile, strength_law, other_cal)
+        alt_law = Context(strength_law=OTHER_LAW[strength_law])
+    else:
+        alt_cal, alt_law = None, alt
+    by = {"base": base, "calibration_law": alt_law, "calibration_sim": alt_cal}
+    names = {}
+    for lv in levels:
+        names[(lv, "calibration")] = (f"S law {OTHER_LAW[strength_law]} for {strength_law}" if lv in ("analytic", "trajectory")
+                                      else f"calibration {other_cal} for {calibration}")
+    if mesh_check and "fe" in levels:
+        by["mesh"] = context_from_pipeline(root, "full" if profile == "ci" else "ci", strength_law, calibration)
+        names[("fe", "mesh")] = f"mesh {'full' if profile == 'ci' else 'ci'} for {profile}"
+    for c in by.values():
+        if c is not None:
+            c.fe_max_seconds = fe_max_seconds
+    return Contexts(by, names)
+
+
+def context_for(ctxs: Contexts, job: Job):
+    if job.variant == "calibration":
+        return ctxs.by_variant["calibration_law" if job.level in ("analytic", "trajectory") else "calibration_sim"]
+    if job.variant == "mesh":
+        return ctxs.by_variant["mesh"]
+    return ctxs.by_variant["base"]
+
+
+def _run_one(args):
+    """One job in a worker: (job, depth m, wall s, error text or None)."""
+    from .ladder import run
+    job, shot, ctx = args
+    try:
+        res = run(shot, job.level, ctx)
+        return job, float(res.depth_m), float(res.wall_time_s), None
+    except (ParameterError, RuntimeError, ValueError) as err:
+        return job, math.nan, 0.0, str(err)
+
+
+def _worker_init():
+    try:
+        import numba
+        numba.set_num_threads(1)
+    except (ImportError, ValueError):
+        pass
+
+
+def run_jobs(study: Study, noses: dict, ctxs: Contexts, jobs: list, workers: int = 1, progress=None, done=None):
+    """Run ``jobs``: the closed forms and the cavity level in this process, the fe level's shots ``workers`` at a
+    time (one numba thread each). ``done``: a list the finished (job, depth, wall, error) are appended to as they
+    come (an interrupted run keeps them there). Returns ``done``."""
+    done = [] if done is None else done
+    cheap = [j for j in jobs if j.level != "fe"]
+    heavy = [j for j in jobs if j.level == "fe"]
+    total = len(jobs)
+
+    def args(j):
+        return j, shots(study, noses, j.velocity, j.member)[j.nose], context_for(ctxs, j)
+    for j in cheap:
+        done.append(_run_one(args(j)))
+        if progress:
+            progress(len(done), total)
+    if heavy and workers > 1:
+        import multiprocessing as mp
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+        method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
+        with ProcessPoolExecutor(workers, mp_context=mp.get_context(method), initializer=_worker_init) as pool:
+            futures = [pool.submit(_run_one, args(j)) for j in heavy]
+            try:
+                for f in as_completed(futures):
+                    done.append(f.result())
+                    if progress:
+                        progress(len(done), total)
+            except BaseException:
+                for f in futures:
+                    f.cancel()
+                raise
+    else:
+        for j in heavy:
+            done.append(_run_one(args(j)))
+            if progress:
+                progress(len(done), total)
+    return done
+
+
+def validated_errors(root, profile) -> dict:
+    """(level, calibration) -> (median |contrast error|, what it rests on), from the committed nose-pair summary
+    (empty when the file is missing)."""
+    from pathlib import Path
+    path = Path(root) / f"figures/fe/{profile}/validation_nose_pairs_summary.csv"
+    if not path.is_file():
+        return {}
+    need = ["level", "calibration", "pairs", "shots", "noses", "median_abs_contrast_error"]
+    try:
+        table = pd.read_csv(path)
+        missing = [c for c in need if c not in table]
+        if missing:
+            raise ValueError(f"no column {missing[0]}")
+        out = {}
+        for i, r in table.iterrows():
+            e = float(r["median_abs_contrast_error"])
+            if not (math.isfinite(e) and e >= 0):
+                raise ValueError(f"row {i + 2}: median_abs_contrast_error = {r['median_abs_contrast_error']!r}, "
+                                 "allowed: a number >= 0")
+            out[(str(r["level"]), str(r["calibration"]).split(":")[0])] = (
+                e, f"{int(r['pairs'])} pairs of {int(r['shots'])} shots, {r['noses']}")
+        return out
+    except (OSError, ValueError, TypeError, pd.errors.ParserError) as err:
+        raise ParameterError(f"record {path}", "contents", str(err), "the columns " + ", ".join(need)
+                             + " (rule validation_nose_pairs)") from None
+
+
+def tabulate(study: Study, noses: dict, done: list, validated: dict, calibration: str, strength_law: str,
+             ctxs: Contexts) -> pd.DataFrame:
+    """The comparison's table: one row per level, nose and velocity."""
+    depth = {(j.level, j.variant, j.nose, j.velocity): d for j, d, _, _ in done}
+    wall = {(j.level, j.variant, j.nose, j.velocity): w for j, _, w, _ in done}
+    errors = {(j.level, j.variant, j.nose, j.velocity): e for j, _, _, e in done if e}
+    top = max(study.velocities)
+    ref = study.reference
+    rows = []
+    for lv in study.levels:
+        cal_key = (lv, "none" if lv in ("analytic", "trajectory") else calibration)
+        u_val, val_scope = validated.get(cal_key, (math.nan, "no committed nose-pair validation"))
+
+        def contrast(variant, nose, v):
+            return depth.get((lv, variant, nose, v), math.nan) / depth.get((lv, variant, ref, v), math.nan)
+
+        chaos = {}
+        if lv == "fe":
+            for n in study.noses:
+                c = [contrast("base" if k == 0 else f"member {k}", n, top) for k in range(study.members)]
+                chaos[n] = float(np.std(c, ddof=1) / np.mean(c)) if np.all(np.isfinite(c)) else math.nan
+        for v in study.velocities:
+            for n, (nose, sol) in noses.items():
+                c = contrast("base", n, v)
+                parts, u = [], {}
+                if n != ref:
+                    u["u_validated"] = u_val
+                    parts.append(f"validated (the level's median |contrast error|, {val_scope})")
+                    cal_v = v if lv != "fe" else top
+                    u["u_calibration"] = abs(contrast("calibration", n, cal_v) / contrast("base", n, cal_v) - 1.0)
+                    parts.append(f"calibration ({ctxs.names.get((lv, 'calibration'), '')}"
+                                 + (f", at {top:g} m/s)" if lv == "fe" else ")"))
+                    if lv == "fe":
+                        u["u_chaos"] = chaos[n]
+                        parts.append(f"chaos ({study.members} realisations at {top:g} m/s)")
+                        if study.mesh_check:
+                            u["u_mesh"] = abs(contrast("mesh", n, top) / contrast("base", n, top) - 1.0)
+                            parts.append(f"mesh ({ctxs.names.get(('fe', 'mesh'), '')}, at {top:g} m/s)")
+                        else:
+                            parts.append("mesh not included (--mesh-check)")
+                finite = [x for x in u.values() if math.isfinite(x)]
+                rows.append({
+                    "level": lv, "nose": n, "kind": study.noses[n][0], "nstar": nstar(nose), "nose_length_m": nose.length,
+                    "velocity_ms": v, "depth_m": depth.get((lv, "base", n, v), math.nan),
+                    "contrast": c if n != ref else 1.0, "reference": ref,
+                    "u_validated": u.get("u_validated", math.nan), "u_calibration": u.get("u_calibration", math.nan),
+                    "u_chaos": u.get("u_chaos", math.nan), "u_mesh": u.get("u_mesh", math.nan),
+                    "u_combined": math.sqrt(sum(x * x for x in finite)) if n != ref and finite else math.nan,
+                    "parts": "; ".join(parts) if n != ref else "the reference nose",
+                    "wall_time_s": wall.get((lv, "base", n, v), math.nan),
+                    "error": errors.get((lv, "base", n, v), "")})
+    return pd.DataFrame(rows)
+
+
+def reused(ctxs: Contexts, levels) -> list:
+    """What the comparison carries over from the pipeline (printed by the command line)."""
+    base = ctxs.by_variant["base"]
+    out = []
+    if "cavity" in levels:
+        out.append(f"cavity strength scale {base.strength_scale:.4g} ({base.strength_scale_source})")
+    if "fe" in levels:
+        out.append(f"fe failure strain {base.failure_strain:.4g} ({base.failure_strain_source})")
+    return out
+
+
+def describe_inputs(study: Study) -> str:
+    s = study.shot
+    parts = [f"m = {float(s['mass_kg']):g} kg", f"d = {1e3 * float(s['diameter_m']):g} mm"]
+    if "length_m" in s:
+        parts.append(f"L = {1e3 * float(s['length_m']):g} mm")
+    parts.append(f"fc = {float(s['fc_MPa']):g} MPa")
+    if "target_density_kgm3" in s:
+        parts.append(f"rho = {float(s['target_density_kgm3']):g} kg/m^3")
+    return ", ".join(parts) + f"; contrast against {study.reference}"
+
+
+def output_files(out) -> dict:
+    """The files a comparison writes into folder ``out``."""
+    from pathlib import Path
+    return {name: Path(out) / name for name in ("compare.csv", "compare.png", "noses.csv", "noses.png")}
+
+
+def prepare(study: Study, root, profile="ci", strength_law="li_chen", calibration="laboratory", fe_max_seconds=math.inf,
+            say=None):
+    """Everything checked before any run: (the noses, the contexts, the validated contrast errors); ``say`` gets
+    the solved noses and what the comparison reuses."""
+    say = say or (lambda line: None)
+    noses = build_noses(study)
+    for label, (_, sol) in noses.items():
+        if sol is not None:
+            say(f"nose {label}: {sol.describe()}")
+    shots(study, noses, max(study.velocities))   # the shot's checks
+    ctxs = contexts(root, profile, strength_law, calibration, study.levels, study.mesh_check, fe_max_seconds)
+    for line in reused(ctxs, study.levels):
+        say(f"reuses {line}")
+    validated = validated_errors(root, profile if "fe" in study.levels else "full")
+    return noses, ctxs, validated
+
+
+def nose_rows(study: Study, noses: dict) -> pd.DataFrame:
+    """One row per nose: its kind, keys, the solved key, radius, length and N*."""
+    rows = []
+    for label, (nose, sol) in noses.items():
+        kind, keys = study.noses[label]
+        rows.append({"nose": label, "kind": kind, "keys": " ".join(f"{k}={v}" for k, v in keys.items()),
+                     "solved": sol.describe() if sol else "", "radius_m": nose.radius, "nose_length_m": nose.length,
+                     "nstar": nstar(nose)})
+    return pd.DataFrame(rows)
+
+
+def drawing(study: Study, noses: dict, title_wrap=lambda t: t) -> dict:
+    """What figures.compare.write_comparison draws besides the table: the noses' rows, their cumulative N* curves
+    and the title."""
+    from ..nose.nstar import cumulative_nstar
+    return {"noses": nose_rows(study, noses), "title": title_wrap(study.title or describe_inputs(study)),
+            "curves": {label: cumulative_nstar(nose, 120) for label, (nose, _) in noses.items()}}
+
+
+def with_workers(n=None) -> int:
+    return max(1, min(n or os.cpu_count() or 1, os.cpu_count() or 1))
