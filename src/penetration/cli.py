@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import textwrap
 import time
@@ -157,7 +158,13 @@ def _parser():
     o.add_argument("--points", type=int, default=200, help="points per segment of the outline (default 200; 2-10000)")
     _shot_parser(sub, "dop", "depth of penetration, time to rest, peak deceleration and cost of one shot")
     s = _shot_parser(sub, "simulate", "one shot as dop, and its history (time, depth, velocity, deceleration) as CSV")
-    s.add_argument("--out", required=True, help="history CSV to write (levels trajectory, cavity, fe)")
+    s.add_argument("--out", required=True, help="history CSV to write (levels trajectory, cavity, fe): time, depth, "
+                   "velocity, deceleration")
+    s.add_argument("--fields", default=None, metavar="DIR", help="fe level: write the target's state (damage, plastic "
+                   "strain, pressure on the deformed mesh) at --field-times-ms and at the end into DIR, each as a VTK "
+                   "file (fields_*.vtu: ParaView, meshio) and a PNG")
+    s.add_argument("--field-times-ms", default="", metavar="T1,T2,...", help="fe level: times (ms) of the field "
+                   "files besides the end (at most 20)")
     from .shots.fields import columns_help
     pr = sub.add_parser("predict", help="depth of penetration of a CSV of shots at any level",
                         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -474,6 +481,7 @@ def _one_shot(args) -> int:
                 check_target(out)
             except TargetError as err:
                 return _fail(f"--out {args.out}: {err}")
+        fields_dir = _fields_request(args, ctx)
         log = _log()
         _interruptible()
         t0 = time.perf_counter()
@@ -502,6 +510,11 @@ def _one_shot(args) -> int:
         except OSError as err:
             return _fail(f"cannot write --out {args.out}: {err.strerror or err}")
         rec["history"] = str(out)
+    if fields_dir is not None:
+        try:
+            rec["fields"] = _write_fields(res, shot, fields_dir)
+        except (TargetError, OSError) as err:
+            return _fail(f"--fields {fields_dir}: {getattr(err, 'strerror', None) or err}")
     if args.json:
         print(json.dumps(rec))
     else:
@@ -509,10 +522,60 @@ def _one_shot(args) -> int:
               f"time to rest       {rec['time_to_rest_s']:.6g} s\npeak deceleration  {rec['peak_deceleration_m_s2']:.6g} m/s^2\n"
               f"status             {rec['status']}\nwall time          {rec['wall_time_s']:.3g} s\nnotes              {rec['notes']}"
               + (f"\nhistory            {rec['history']}" if "history" in rec else "")
+              + (f"\nfields             {', '.join(rec['fields'])}" if "fields" in rec else "")
               + f"\naccuracy           {rec['validated_accuracy']}")
     for w in rec["warnings"]:
         print(f"warning: {w}: the level's accuracy there is not known", file=sys.stderr)
     return 0
+
+
+MAX_FIELD_TIMES = 20
+
+
+def _fields_request(args, ctx):
+    """The --fields folder (None without it), checked before any run; sets ctx.fe_snapshot_times."""
+    folder = getattr(args, "fields", None)
+    times = getattr(args, "field_times_ms", "")
+    if folder is None:
+        if times:
+            raise ParameterError("argument", "--field-times-ms", times, "only with --fields DIR")
+        return None
+    if args.model != "fe":
+        raise ParameterError("argument", "--fields", folder, "only with --model fe (the other levels have no mesh)")
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise ParameterError("argument", "--fields", str(folder), "a folder (new or existing), not a file")
+    try:
+        values = tuple(sorted({parse_number(x) for x in times.split(",") if x.strip()}))
+    except ValueError:
+        raise ParameterError("argument", "--field-times-ms", times, f"numbers (ms) separated by commas: {NUMBER_FORM}") from None
+    if len(values) > MAX_FIELD_TIMES or any(not (0 < v <= 1e4) for v in values):
+        raise ParameterError("argument", "--field-times-ms", times, f"at most {MAX_FIELD_TIMES} times in (0, 1e4] ms")
+    from .pipeline.io import TargetError, check_target
+    probe = folder / "fields_end.vtu"
+    try:
+        check_target(probe)
+    except TargetError as err:
+        raise ParameterError("argument", "--fields", str(folder), str(err)) from None
+    ctx.fe_snapshot_times = tuple(1e-3 * v for v in values) + (math.inf,)   # inf: the end only
+    return folder
+
+
+def _write_fields(res, shot, folder) -> list:
+    """Each snapshot of an fe run as fields_t{ms}.vtu and .png (the last, at rest: fields_end); the paths."""
+    from .figures.fe_fields import draw_snapshot
+    from .pipeline.io import write_vtu
+    snaps, conn = res.fields
+    written = []
+    for k, snap in enumerate(snaps):
+        stem = "fields_end" if k == len(snaps) - 1 else f"fields_t{1e3 * snap['t']:.3f}ms"
+        path = Path(folder) / f"{stem}.vtu"
+        write_vtu(path, snap["r"], snap["z"], conn, {"damage": snap["damage"], "plastic_strain": snap["eps_p"],
+                                                      "pressure_Pa": snap["pressure"], "state": snap["state"]})
+        draw_snapshot(snap, conn, shot.nose.radius, path.with_suffix(".png"), f"{shot.nose.kind} nose, "
+                      f"{shot.velocity:g} m/s, fc {shot.fc / 1e6:g} MPa")
+        written += [str(path), str(path.with_suffix(".png"))]
+    return written
 
 
 def _fail(message) -> int:

@@ -145,6 +145,8 @@ class ShotResult:
     tunnel_eroded_share: float = math.nan
     dt_shares: dict = field(default_factory=dict)   # share of the steps each time-step criterion controlled
     dt_control: str = ""                             # the last step's criterion and element
+    snapshots: list = field(default_factory=list)    # the target's state at the requested times and at the end
+    conn: object = None                              # the elements' corner nodes (the snapshots' cells)
 
     def summary(self):
         last = self.audit[-1]
@@ -187,8 +189,17 @@ def progress_to(log):
         LOG.setLevel(level)
 
 
-def run_shot(spec: RunSpec, keep_model=False, max_attempts=3) -> ShotResult:
-    """Penetration of the spec's rigid projectile into its FE target; progress through the solver's logger."""
+def snapshot(model, t, depth) -> dict:
+    """The target's state now: node positions (m), and per element its damage, plastic strain, pressure (Pa) and
+    state code (fe.state: LIVE 1; eroded, ejected and the others carry no stress)."""
+    return {"t": float(t), "depth": float(depth), "r": model.r.copy(), "z": model.z.copy(),
+            "damage": model.E[fe_state.DMG].copy(), "eps_p": model.E[fe_state.EPSP].copy(),
+            "pressure": model.E[fe_state.P].copy(), "state": np.asarray(model.alive).copy()}
+
+
+def run_shot(spec: RunSpec, keep_model=False, max_attempts=3, snapshot_times=()) -> ShotResult:
+    """Penetration of the spec's rigid projectile into its FE target; progress through the solver's logger.
+    ``snapshot_times`` (s): the target's state is kept at the first output at or after each (and at the end)."""
     settings, target, nose = spec.settings, spec.target, spec.nose
     expected = spec.expected_depth
     zeta, rho = body_outline(nose, settings.body_length)
@@ -196,9 +207,13 @@ def run_shot(spec: RunSpec, keep_model=False, max_attempts=3) -> ShotResult:
         model = model_for(nose, settings, target, spec.material, expected)
         proj = Projectile(zeta, rho, spec.mass, 0.0, spec.velocity, spec.friction)
         pmax = [0.0]
+        pending, shots = sorted(float(x) for x in snapshot_times), []
 
         def sample(m, t):
             pmax[0] = max(pmax[0], nose_pressure(m, proj, nose, settings.element_size))
+            while pending and t >= pending[0] - 1e-15:
+                pending.pop(0)
+                shots.append(snapshot(m, t, proj.Zt))
 
         t0 = time.perf_counter()
         res = run(model, proj, callback=sample)
@@ -209,10 +224,13 @@ def run_shot(spec: RunSpec, keep_model=False, max_attempts=3) -> ShotResult:
             LOG.info("reached the bottom of a %.2f m domain: repeating 2 times deeper", model.z.max())
             continue
         break
+    if snapshot_times:
+        shots.append(snapshot(model, res.time, proj.Zt))
     h = res.history
     tb, dec = filtered(h["t"], h["contact_force"], spec.mass, settings.bin_width, settings.cutoff_hz)
     return ShotResult(float(proj.Zt), float(res.time), res.status, float(dec.max()) if dec.size else 0.0,
                       {"t": h["t"], "depth": h["depth"], "velocity": h["velocity"], "contact_force": h["contact_force"],
                        "t_bins": tb, "deceleration": dec}, res.audit, wall, res.steps, model.grid.elements,
                       model.ledger.eroded_mass, pmax[0], model if keep_model else None, attempt,
-                      tunnel_eroded_share(model, nose.radius, float(proj.Zt)), res.dt_shares, res.dt_control)
+                      tunnel_eroded_share(model, nose.radius, float(proj.Zt)), res.dt_shares, res.dt_control,
+                      shots, model.conn.copy() if snapshot_times else None)

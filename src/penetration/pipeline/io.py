@@ -108,6 +108,17 @@ def write_csv(frame: pd.DataFrame, path):
         frame.to_csv(tmp, index=False, float_format="%.12g", lineterminator="\n")
 
 
+def write_vtu(path, r, z, quads, cell_data: dict):
+    """Write a 2-D axisymmetric mesh as VTK XML unstructured grid (readable by ParaView and meshio): points (r, z, 0)
+    in metres, quadrilateral cells ``quads`` (corner node indices), one array per cell field."""
+    import meshio
+    points = np.column_stack([np.asarray(r, float), np.asarray(z, float), np.zeros(len(r))])
+    mesh = meshio.Mesh(points, [("quad", np.asarray(quads, np.int64))],
+                       cell_data={k: [np.asarray(v, float)] for k, v in cell_data.items()})
+    with atomic(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu")
+
+
 def write_json(obj, path):
     write_text(path, json.dumps(obj, indent=2, default=_jsonable) + "\n")
 

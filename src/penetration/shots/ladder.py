@@ -114,6 +114,7 @@ class LevelResult:
     status: str = "rest"
     notes: str = ""
     history: dict | None = None
+    fields: tuple | None = None   # the fe level's (snapshots, element corners) where Context.fe_snapshot_times asks
 
     def record(self) -> dict:
         return {"level": self.level, "depth_m": self.depth_m, "time_to_rest_s": self.time_to_rest_s,
@@ -152,6 +153,7 @@ class Context:
     fe_max_seconds: float = math.inf        # an fe shot estimated to cost more is refused before it runs
     fe_profile: str = "full"                # the mesh profile of the fe calibration (named in messages)
     fe_available_memory: float = math.inf   # bytes an fe shot may use (the caller reads what is free now)
+    fe_snapshot_times: tuple = ()           # s: the fe level keeps the target's state at these times and at the end
 
     def __post_init__(self):
         if self.strength_law not in STRENGTH_LAWS:
@@ -294,14 +296,18 @@ def _fe(shot, ctx, log=None):
                              f"at most --max-minutes {ctx.fe_max_seconds / 60:g} ({est.describe()}); raise "
                              "--max-minutes to run it")
     with progress_to(log):
-        r = run_shot(spec)
+        r = run_shot(spec, snapshot_times=ctx.fe_snapshot_times)
     s = r.summary()
     notes = (f"HJC scaled to fc = {shot.fc / 1e6:.4g} MPa, failure strain {ctx.failure_strain:.6g} "
              f"({ctx.failure_strain_source}), {shot.nose.radius / settings.element_size:.3g} elements across the radius, "
              f"{r.elements} elements, energy error {s['energy_error_max']:.2g}"
              + (f", estimated cost {est.seconds:.3g} s" if est is not None else ""))
-    hist = {"t": r.histories["t_bins"], "deceleration": r.histories["deceleration"]}
-    return LevelResult("fe", r.depth, r.time, r.peak_deceleration, 0.0, status=r.status, notes=notes, history=hist)
+    h = r.histories
+    tb = h["t_bins"]   # depth and velocity on the deceleration's bins
+    hist = {"t": tb, "depth": np.interp(tb, h["t"], h["depth"]), "velocity": np.interp(tb, h["t"], h["velocity"]),
+            "deceleration": h["deceleration"]}
+    return LevelResult("fe", r.depth, r.time, r.peak_deceleration, 0.0, status=r.status, notes=notes, history=hist,
+                       fields=(r.snapshots, r.conn) if ctx.fe_snapshot_times else None)
 
 
 RUNNERS = {"analytic": _analytic, "trajectory": _trajectory, "cavity": _cavity, "fe": _fe}
