@@ -89,3 +89,42 @@ def test_the_report_is_titled_after_the_paper_and_loads_nothing():
     assert network_resources(html) == []
     assert page_title(HEAD.replace(TITLE.replace("&", "&amp;"), "Notebook")) == "Notebook"
     assert any("title" in p for p in embedding_problems("<title>Notebook</title>" + " ".join(SECTIONS), Path("/nonexistent"), "full"))
+
+
+def test_the_committed_report_is_rendered_from_the_committed_inputs():
+    """The report at git HEAD names the files it was rendered from with their content's object names; each must be
+    the file committed at HEAD (a report older than an input it shows is stale: rebuild it, `snakemake -c2
+    figures/report.html`, and commit it). The machine's timing files are left out."""
+    import subprocess
+
+    from conftest import committed
+    from penetration.tasks.report import read_manifest
+    listed = subprocess.run(["git", "ls-tree", "-r", "HEAD"], capture_output=True, text=True, cwd=ROOT)
+    if listed.returncode != 0:
+        import pytest
+        pytest.skip("not a git checkout")
+    head = {line.split("\t", 1)[1]: line.split()[2] for line in listed.stdout.splitlines()}
+    manifest = read_manifest(committed("figures/report.html"))
+    assert manifest, "figures/report.html has no input manifest: it predates it; rebuild and commit it"
+    stale = sorted(p for p, sha in manifest.items() if head.get(p) != sha)
+    assert not stale, f"figures/report.html is stale: {len(stale)} of its inputs changed since, e.g. {stale[:8]}"
+    assert len(manifest) > 100 and "figures/diff.csv" in manifest
+
+
+def test_the_manifest_names_each_input_by_its_git_object(tmp_path):
+    import subprocess
+
+    from penetration.tasks.report import blob_sha1, input_manifest, read_manifest
+    f = tmp_path / "figures/a.csv"
+    f.parent.mkdir(parents=True)
+    f.write_bytes(b"x,y\n1,2\n")
+    git = subprocess.run(["git", "hash-object", str(f)], capture_output=True, text=True)
+    assert blob_sha1(f.read_bytes()) == git.stdout.strip()
+    import os
+    here = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        html = "<html></html>" + input_manifest(["figures/a.csv", "results/r.json", "figures/timing/t.csv"])
+    finally:
+        os.chdir(here)
+    assert read_manifest(html) == {"figures/a.csv": git.stdout.strip()}

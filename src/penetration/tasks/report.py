@@ -46,8 +46,38 @@ def report(inputs, outputs, params):
     problems = embedding_problems(html, Path("."), params.profile)
     if problems:
         raise RuntimeError(f"{inputs.source} renders a report that is not the build's, whole and offline: {problems}")
-    write_text(outputs.html, html)
+    read = [inputs.source, inputs.reference, inputs.findings, *inputs.outputs, *params.studies]
+    write_text(outputs.html, html + input_manifest(read))
     print(f"{len(nb.cells)} cells executed; {len(html) / 1e6:.1f} MB of HTML")
+
+
+MANIFEST = "report inputs (git blob SHA-1, path)"
+
+
+def blob_sha1(data: bytes) -> str:
+    """Git's object name of a file's content: what `git ls-tree` lists for it at a commit."""
+    import hashlib
+    return hashlib.sha1(b"blob %d\0" % len(data) + data).hexdigest()
+
+
+def input_manifest(paths) -> str:
+    """An HTML comment naming every committed file the report was rendered from with its content's git object
+    name (results/, which is not committed, and the machine's timing under figures/timing/ left out), so that a
+    check can tell a committed report from one whose inputs have moved on (tests/test_report.py)."""
+    lines = []
+    for p in sorted({Path(x).as_posix() for x in paths}):
+        if p.startswith(("results/", "figures/timing/")) or not Path(p).is_file():
+            continue
+        lines.append(f"{blob_sha1(Path(p).read_bytes())} {p}")
+    return f"\n<!-- {MANIFEST}:\n" + "\n".join(lines) + "\n-->\n"
+
+
+def read_manifest(html) -> dict:
+    """path -> git object name from a report's input manifest ({} when it has none)."""
+    m = re.search(r"<!-- " + re.escape(MANIFEST) + r":\n(.*?)\n-->", html, re.S)
+    if not m:
+        return {}
+    return {line.split(" ", 1)[1]: line.split(" ", 1)[0] for line in m.group(1).splitlines() if " " in line}
 
 
 # nbconvert's lab page without the loaders it fetches from a CDN (require.js, MathJax, mermaid): nothing in the
