@@ -346,9 +346,15 @@ UNKNOWN_ACCURACY = "validated accuracy unknown (no committed validation under --
 
 
 def _validation(args):
-    """(the development shots' range, level -> errors) from the committed validation under --root, or None."""
+    """(the development shots' range, level -> errors) from the committed validation under --root, or None (a
+    record that cannot be read is said on stderr, naming it: the answer stands without its accuracy)."""
+    from .pipeline.records import RecordError
     from .shots.records import validated_accuracy
-    return validated_accuracy(args.root, args.profile, getattr(args, "calibration", "laboratory"))
+    try:
+        return validated_accuracy(args.root, args.profile, getattr(args, "calibration", "laboratory"))
+    except RecordError as err:
+        print(f"warning: {err}; the validated accuracy is not known", file=sys.stderr)
+        return None
 
 
 def _trust(args, shot, level):
@@ -371,7 +377,12 @@ def _accuracy_with_size(args, level, errors, rng):
     from .shots.records import scale_effect_accuracy
     from .shots.trust import accuracy_line, scale_effect_line, with_scale_effect_range
     variant, why = getattr(args, "size_variant", ("none", "not chosen"))
-    row = scale_effect_accuracy(args.root, level, variant)
+    from .pipeline.records import RecordError
+    try:
+        row = scale_effect_accuracy(args.root, level, variant)
+    except RecordError as err:
+        print(f"warning: {err}; the scale effect's validation is not known", file=sys.stderr)
+        row = None
     if variant != "none":
         return f"validated accuracy of the {level} level with the {scale_effect_line(variant, why, row)}", \
             with_scale_effect_range(rng, row)

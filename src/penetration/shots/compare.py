@@ -298,24 +298,13 @@ def validated_errors(root, profile) -> dict:
     path = Path(root) / f"figures/fe/{profile}/validation_nose_pairs_summary.csv"
     if not path.is_file():
         return {}
-    need = ["level", "calibration", "pairs", "shots", "noses", "median_abs_contrast_error"]
-    try:
-        table = pd.read_csv(path)
-        missing = [c for c in need if c not in table]
-        if missing:
-            raise ValueError(f"no column {missing[0]}")
-        out = {}
-        for i, r in table.iterrows():
-            e = float(r["median_abs_contrast_error"])
-            if not (math.isfinite(e) and e >= 0):
-                raise ValueError(f"row {i + 2}: median_abs_contrast_error = {r['median_abs_contrast_error']!r}, "
-                                 "allowed: a number >= 0")
-            out[(str(r["level"]), str(r["calibration"]).split(":")[0])] = (
-                e, f"{int(r['pairs'])} pairs of {int(r['shots'])} shots, {r['noses']}")
-        return out
-    except (OSError, ValueError, TypeError, pd.errors.ParserError) as err:
-        raise ParameterError(f"record {path}", "contents", str(err), "the columns " + ", ".join(need)
-                             + " (rule validation_nose_pairs)") from None
+    from ..pipeline.records import read_record
+    rows = read_record(path, {"level": "text", "calibration": "text", "pairs": "count", "shots": "count",
+                              "noses": "text", "median_abs_contrast_error": "number"},
+                       what="the levels' nose-pair validation, rule validation_nose_pairs")
+    return {(r["level"], r["calibration"].split(":")[0]): (r["median_abs_contrast_error"],
+                                                           f"{r['pairs']} pairs of {r['shots']} shots, {r['noses']}")
+            for r in rows}
 
 
 def tabulate(study: Study, noses: dict, done: list, validated: dict, calibration: str, strength_law: str,

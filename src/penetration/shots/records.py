@@ -17,6 +17,7 @@ from ..fe.shot import Settings
 from ..paper import reference
 from ..pipeline.config import element_sizes, load_with
 from ..pipeline.io import load_json, read_rows
+from ..pipeline.records import RecordError, read_record
 from ..pipeline.scenes import SIZE_LEVEL  # the level whose scale-effect calibration a level takes
 from ..studies.laboratory import FITTED
 from ..studies.scale import recommended_variant
@@ -70,21 +71,32 @@ CALIBRATIONS = ("laboratory", "do1")
 
 def _calibration(path, key) -> dict:
     """A calibration as the levels read it: a rule's JSON (results/), a committed one-row DO1 record (figures/) whose
-    ``value`` is the fitted ``key``, or a laboratory record (its fold ``all``); ``source`` says which it is."""
+    ``value`` is the fitted ``key``, or a laboratory record (its fold ``all``); ``source`` says which it is. The
+    committed records go through pipeline.records.read_record (an error names the file, row and column)."""
     if str(path).endswith(".json"):
         return {"source": "calibrated on DO1", **load_json(path)}
-    table = pd.read_csv(path)
-    source = "fitted on the laboratory shots" if "fold" in table else "calibrated on DO1"
-    if "fold" in table:
-        table = table[table.fold == "all"]
-        if len(table) != 1:
-            raise ValueError(f"{path}: a laboratory calibration needs exactly one row of fold 'all', found {len(table)}")
-    row = table.iloc[0]
-    if row.parameter != key:
-        raise ValueError(f"{path}: a calibration of {row.parameter}, not of {key}")
-    out = {key: float(row.value), "source": source}
-    if "element_size_m" in row:
-        out.update(element_size=float(row.element_size_m), elements_across_radius=float(row.elements_across_radius))
+    rows = read_record(path, {"parameter": "text", "value": "number"},
+                       {"fold": "text", "element_size_m": "number", "elements_across_radius": "number"},
+                       what=f"a calibration of {key}")
+    source = "fitted on the laboratory shots" if "fold" in rows[0] else "calibrated on DO1"
+    if "fold" in rows[0]:
+        rows = [r for r in rows if r["fold"] == "all"]
+        if len(rows) != 1:
+            raise RecordError(f"record {path}", "fold", f"{len(rows)} rows of fold all",
+                              "exactly one row of fold 'all' (a laboratory calibration)")
+    row = rows[0]
+    if row["parameter"] != key:
+        raise RecordError(f"record {path}", "parameter", row["parameter"], f"{key}: a calibration of {key}, not of "
+                          f"{row['parameter']} (a record of another level's calibration)")
+    if not row["value"] > 0:
+        raise RecordError(f"record {path}", "value", row["value"], f"{key} > 0")
+    out = {key: row["value"], "source": source}
+    if row.get("element_size_m") is not None:
+        if row.get("elements_across_radius") is None:
+            raise RecordError(f"record {path}", "elements_across_radius", None, "a number beside element_size_m")
+        out.update(element_size=row["element_size_m"], elements_across_radius=row["elements_across_radius"])
+    elif key == "fs":
+        raise RecordError(f"record {path}", "element_size_m", None, "the mesh's element size (an fe calibration)")
     return out
 
 
@@ -94,6 +106,22 @@ SCALE_CALIBRATION = "figures/scale/calibration_{level}.csv"
 SCALE_VALIDATION = "figures/scale/validation_{level}.csv"
 NO_SIZE = "none"
 AUTO_SIZE = "auto"
+
+
+def scale_calibration_table(path) -> pd.DataFrame:
+    """The scale effect's calibration record (rule scale_validation), read through the checked reader."""
+    rows = read_record(path, {"level": "text", "fold": "text", "variant": "text", "value": "number"},
+                       what="the scale effect's calibration, rule scale_validation")
+    return pd.DataFrame(rows)
+
+
+def scale_validation_rows(path) -> list:
+    """The scale effect's validation record (rule scale_validation), read through the checked reader."""
+    return read_record(path, {"level": "text", "variant": "text", "loso_median_abs_rel_err": "number",
+                              "loso_p90_abs_rel_err": "number", "split_ratio": "number", "do1_rel_error": "number"},
+                       {"do1_pred_m": "number", "loso_mean_rel_err": "number", "loso_within_10pct": "count",
+                        "loso_shots": "count"},
+                       what="the scale effect's validation, rule scale_validation")
 
 
 CONFIG_SCHEMA = "workflow/schemas/config.schema.json"
@@ -133,7 +161,7 @@ def size_problem(cfg, root, level, variant, profile="full", strength_law=None):
     path = Path(root) / calibration
     if not path.is_file():
         return f"a calibrated variant: {calibration} is missing under {root} (snakemake -c2 {calibration})"
-    table = pd.read_csv(path)
+    table = scale_calibration_table(path)
     if not ((table.level == at) & (table.variant == variant) & (table.fold == "all")).any():
         return f"a variant {calibration} has (snakemake -c2 {calibration} rebuilds it with the config's variants)"
     return None
@@ -150,7 +178,7 @@ def chosen_size(root, level, size, profile="full", strength_law=None) -> tuple[s
     path = Path(root) / validation
     if not path.is_file():
         return NO_SIZE, f"no validation of the scale effect at the {at} level ({validation})"
-    best = recommended_variant(pd.read_csv(path).to_dict("records"))
+    best = recommended_variant(scale_validation_rows(path))
     if best is None:
         return NO_SIZE, f"no variant meets the validation's goals at the {at} level ({validation})"
     problem = size_problem(root_config(root), root, level, best, profile, strength_law)
@@ -194,7 +222,7 @@ def scale_effect_context(ctx: Context, root, level, variant, profile="full", str
     if problem is not None:
         raise ParameterError("argument", "--size", variant, problem)
     at = SIZE_LEVEL[level]
-    return with_scale_effect(ctx, cfg, pd.read_csv(root / SCALE_CALIBRATION.format(level=at)), at, variant)
+    return with_scale_effect(ctx, cfg, scale_calibration_table(root / SCALE_CALIBRATION.format(level=at)), at, variant)
 
 
 def scale_effect_accuracy(root, level, variant):
@@ -205,10 +233,10 @@ def scale_effect_accuracy(root, level, variant):
     path = root / SCALE_VALIDATION.format(level=level)
     if variant == NO_SIZE or not path.is_file():
         return None
-    table = pd.read_csv(path)
-    row = table[(table.level == level) & (table.variant == variant)]
-    if len(row) != 1:
+    rows = [r for r in scale_validation_rows(path) if r["level"] == level and r["variant"] == variant]
+    if len(rows) != 1:
         return None
+    row = pd.DataFrame(rows)
     cfg = root_config(root)
     refs = reference.load_reference(root / cfg["reference"])
     return {**row.iloc[0].to_dict(), "do1_diameter_m": refs["table2.diameter"].si}
@@ -274,16 +302,27 @@ def validated_accuracy(root=".", profile="full", calibration="laboratory"):
     try:
         cfg = root_config(root)
         _, rows = read_rows(root / cfg["validation"]["shots"])
-        table = pd.read_csv(summary)
     except (OSError, KeyError, ValueError):
         return None
-    if "primary" in table:
-        table = table[table.primary.astype(bool)]
+    if not summary.is_file():
+        return None
+    table = read_record(summary, {"level": "text", "shots": "count", "median_abs_rel_err": "number",
+                                  "p90_abs_rel_err": "number", "mean_rel_err": "number", "within_10pct": "count"},
+                        {"primary": "flag", "calibration": "text", "scoring": "text"},
+                        what="the levels' validation, rule validation_levels")
+    table = [r for r in table if r.get("primary") in (None, True)]
     _, fe_calibration = fe_calibration_record(root, profile, calibration)
     errors = {}
-    for level, g in table.groupby("level", sort=False):
-        if level in ("cavity", "fe"):
-            g = g[g.calibration == (fe_calibration if level == "fe" else calibration)]
-        if len(g):
-            errors[level] = g.iloc[0].to_dict()
+    for r in table:
+        level = r["level"]
+        if level in errors:
+            continue
+        if level in ("cavity", "fe") and r.get("calibration") != (fe_calibration if level == "fe" else calibration):
+            continue
+        errors[level] = r
+    try:
+        ValidatedRange.from_rows(rows)
+    except (KeyError, ValueError) as err:
+        raise RecordError(f"record {root / cfg['validation']['shots']}", "rows", str(err),
+                          "the development shots' columns as numbers") from None
     return ValidatedRange.from_rows(rows), errors
