@@ -405,3 +405,20 @@ def test_the_cavity_table_span_is_checked_before_a_table_is_built():
     with pytest.raises(L.ParameterError, match="at most 1000 m/s"):
         L.run(L.UserShot(Ogive(3.0, 0.07), 81.1, 1000.5, 48e6), "cavity", ctx)
     assert ctx.table_builds == 0
+
+
+def test_the_probe_settles_on_the_fastest_of_agreeing_probes():
+    """A transient (a probe 150 times slow, as a busy machine once gave) does not set the estimate: probing goes on
+    until two agree, and the fastest is taken; a rate beyond BUSY_NS is said to be a busy machine's."""
+    from penetration.fe.level import BUSY_NS, MAX_PROBES, CostEstimate, settled_rate
+    seq = iter([5000.0, 9221.0, 61.0, 60.0, 1e9])
+    assert settled_rate(lambda: next(seq)) == (60.0, 4)
+    seq = iter([5000.0, 62.0, 60.0])
+    assert settled_rate(lambda: next(seq)) == (60.0, 3)
+    calls = []
+    busy = lambda: calls.append(1) or 1000.0 + len(calls)   # noqa: E731
+    ns, probes = settled_rate(busy)
+    assert probes == MAX_PROBES and ns == 1002.0 > BUSY_NS
+    est = CostEstimate(100, 100, 1000, 1e-3, ns, 100.0, 1e6, probes)
+    assert est.busy and "looks busy" in est.describe() and "best of 5 probes" in est.describe()
+    assert not CostEstimate(100, 100, 1000, 1e-3, 60.0, 6.0, 1e6, 3).busy
