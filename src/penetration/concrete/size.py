@@ -128,6 +128,15 @@ def resistance_factor(effect: SizeEffect | None, diameter, velocity, mechanisms=
     return out
 
 
+def sized_target(target, effect: SizeEffect | None, diameter, velocity):
+    """The closed forms' target (analytic.resistance.Target) with its S times resistance_factor at calibre
+    ``diameter`` and ``velocity``; the target itself without the effect."""
+    import dataclasses
+    if effect is None:
+        return target
+    return dataclasses.replace(target, S=target.S * float(resistance_factor(effect, diameter, velocity)))
+
+
 def crack_band_strain(material: HJC, element_size: float) -> float:
     """The strain at which a crack band of width ``element_size`` (m) has dissipated the fracture energy under linear
     softening from the tensile strength: 2 G_F / (f_t h), G_F = MC2010's at the material's fc, f_t its T."""

@@ -26,7 +26,7 @@ import numpy as np
 from ..analytic.resistance import Target, strength_factor
 from ..analytic.trajectory import EFFECTS, EXCLUDES
 from ..concrete.effects import MATERIAL_EFFECTS
-from ..concrete.size import SizeEffect, resistance_factor
+from ..concrete.size import SizeEffect, sized_target
 from ..levels import WHAT
 from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from . import config
@@ -76,10 +76,7 @@ class Scene:
     def target_at(self, radius, velocity) -> Target:
         """The closed forms' target of a shot of this scene at nose ``radius`` and striking ``velocity``: S times
         the scale effect's factor at calibre 2 radius and V (concrete.size.resistance_factor), or the scene's."""
-        if self.size is None:
-            return self.target
-        return dataclasses.replace(self.target, S=self.target.S * float(
-            resistance_factor(self.size, 2.0 * radius, velocity)))
+        return sized_target(self.target, self.size, 2.0 * radius, velocity)
 
 
 # a scene's name (its file's stem) as the Snakefile's scene wildcard admits it

@@ -39,7 +39,7 @@ from ..cavity.expansion import Controls as CavityControls, Mesh as CavityMesh
 from ..cavity.level import SigmaTable, cavity_trajectory, sigma_table
 from ..concrete.hjc import HJC
 from ..concrete.material import shot_concrete
-from ..concrete.size import SizeEffect, fracture_factor, regularised, resistance_factor, with_rate_law
+from ..concrete.size import SizeEffect, fracture_factor, regularised, sized_target, with_rate_law
 from ..errors import ParameterError
 from ..levels import LEVELS
 from ..nose.geometry import NOSES
@@ -172,9 +172,7 @@ def _target(shot: UserShot, ctx: Context) -> Target:
     """The closed forms' target: S of the context's law, times its calibration factor and the scale effect's factor
     at the shot's calibre and striking velocity (V/d, concrete.size) where the context has one."""
     S = float(strength_factor(shot.fc, ctx.strength_law)) * ctx.strength_factor_scale
-    if ctx.size is not None:
-        S *= float(resistance_factor(ctx.size, 2.0 * shot.nose.radius, shot.velocity))
-    return Target(shot.density, shot.fc, S)
+    return sized_target(Target(shot.density, shot.fc, S), ctx.size, 2.0 * shot.nose.radius, shot.velocity)
 
 
 def _s_note(ctx):
