@@ -14,6 +14,24 @@ def _f(x, fmt):
         return "—"
 
 
+def _facts(read):
+    """(DO1's measured depth text, series name -> its calibre in mm, the shots' count) from the reference and the
+    development shots as the config's laboratory series name them."""
+    import yaml
+
+    from .docs_read import rows
+    cfg = yaml.safe_load(read("workflow/config.yaml"))
+    ref = {r["id"]: r for r in rows(read, cfg["reference"])}
+    do1 = f"{float(ref[cfg['calibration']['do1']['depth']]['value']):g} m"
+    shots = rows(read, cfg["validation"]["shots"])
+    series = cfg["validation"]["laboratory"]["series"]
+    calibre = {}
+    for name, text in series.items():
+        d = {float(r["diameter_m"]) for r in shots if text in r["source"]}
+        calibre[name] = f"{1e3 * min(d):g} mm" if len(d) == 1 else f"{1e3 * min(d):g}-{1e3 * max(d):g} mm"
+    return do1, calibre, len(shots)
+
+
 def _validations(read):
     """(level -> the rows of its figures/scale/validation_LEVEL.csv, the config's levels whose study has not run)."""
     import yaml
@@ -31,9 +49,10 @@ def _validations(read):
 def scale_effect(read) -> str:
     """Per level and variant of the scale effect: the factor fitted on each series alone and their ratio, the pooled
     leave-one-series-out errors, each series' mean error, DO1's prediction (fold all) and whether the goals hold."""
-    lines = ["| level | variant | mechanisms | factor on 26.9 mm / 76.2 mm | ratio | held-out median / p90 "
-             "&#124;error&#124; | mean error 76.2 mm / 26.9 mm | DO1 (5.1 m) | goals met |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    do1, cal, _ = _facts(read)
+    lines = [f"| level | variant | mechanisms | factor on {cal['forrestal2003']} / {cal['forrestal1994']} | ratio | "
+             f"held-out median / p90 &#124;error&#124; | mean error {cal['forrestal1994']} / {cal['forrestal2003']} | "
+             f"DO1 ({do1}) | goals met |", "|---|---|---|---|---|---|---|---|---|"]
     found, missing = _validations(read)
     for level, rows in found.items():
         for r in rows:
@@ -49,8 +68,8 @@ def scale_effect(read) -> str:
                 f"({100 * float(r['do1_rel_error']):+.1f} %) | {sum(met)} of {len(met)} |")
     tail = (f"\nGoals: held-out median |error| <= {100 * GOALS['loso_median']:.0f} % and 90th percentile <= "
             f"{100 * GOALS['loso_p90']:.0f} % (both series left out in turn, pooled), the two series' factors within a "
-            f"ratio of {GOALS['split_ratio']:.2f}, DO1 within {100 * GOALS['do1']:.0f} % of 5.1 m (predicted with the "
-            "factor fitted on all 25 laboratory shots; DO1 enters no fit).")
+            f"ratio of {GOALS['split_ratio']:.2f}, DO1 within {100 * GOALS['do1']:.0f} % of {do1} (predicted with the "
+            f"factor fitted on all {_facts(read)[2]} laboratory shots; DO1 enters no fit).")
     if missing:
         tail += " Not yet run: " + ", ".join(f"`snakemake -c2 figures/scale/validation_{lv}.csv`" for lv in missing) + "."
     return "\n".join(lines) + "\n" + tail + "\n"
@@ -60,8 +79,9 @@ def scale_levels(read) -> str:
     """README's validation table of the scale effect: each level without it and with the variant of the smallest
     held-out median |error|, its errors left one series out, the ratio of the two series' factors, DO1 predicted by
     no fit of it, and the variant the command line takes by default (studies.scale.recommended_variant)."""
-    lines = ["| level | scale effect | held-out median / p90 &#124;error&#124; | series' factors apart | DO1 (5.1 m, in no "
-             "fit) | goals met | `--size auto` takes |", "|---|---|---|---|---|---|---|"]
+    do1, cal, n = _facts(read)
+    lines = [f"| level | scale effect | held-out median / p90 &#124;error&#124; | series' factors apart | DO1 ({do1}, "
+             "in no fit) | goals met | `--size auto` takes |", "|---|---|---|---|---|---|---|"]
     found, missing = _validations(read)
     for level, rows in found.items():
         auto = recommended_variant(rows) or "none"
@@ -72,7 +92,8 @@ def scale_levels(read) -> str:
                          f" / {100 * float(r['loso_p90_abs_rel_err']):.1f} % | {float(r['split_ratio']):.2f} | "
                          f"{float(r['do1_pred_m']):.2f} m ({100 * float(r['do1_rel_error']):+.1f} %) | "
                          f"{sum(goals_met(r).values())} of {len(GOALS)} | {auto if i == 0 else ''} |")
-    tail = ("\nScope: the 25 laboratory shots (26.9 mm and 76.2 mm series, each left out in turn) and DO1; each level's "
+    tail = (f"\nScope: the {n} laboratory shots ({cal['forrestal2003']} and {cal['forrestal1994']} series, each left "
+            "out in turn) and DO1; each level's "
             "one factor is fitted on the laboratory shots with the variant (a calibration); the best variant is the one "
             "of the smallest held-out median. The analytic rows fit a factor on Li & Chen's S per series, hence their "
             "larger errors than the closed form's with S as published, whose authors fitted it on data that include "
