@@ -127,3 +127,17 @@ def test_study_file_and_options(tmp_path):
     study.write_text("noses: {}\nbogus: 1\n")
     res = cli("compare", "--study", str(study), "--out", str(tmp_path / "p"))
     assert res.returncode == 2 and "bogus" in res.stderr
+
+
+def test_a_failed_calibration_run_leaves_its_part_out_and_says_why():
+    from penetration.nose.geometry import Ogive
+    study = C.Study(noses={"ref": ("ogive", {"psi": "3"}), "x": ("ogive", {"psi": "6"})}, reference="ref",
+                    shot={"mass_kg": "0.5", "diameter_m": "0.025", "length_m": "0.2", "fc_MPa": "40"},
+                    velocities=(1000.0,), levels=("fe",), members=2)
+    noses = {"ref": (Ogive(3.0, 0.0125), None), "x": (Ogive(6.0, 0.0125), None)}
+    done = [d for d in _done([1.2, 1.1]) if d[0].variant != "calibration"]
+    done += [(C.Job("fe", "calibration", "ref", 1000.0), float("nan"), 0.0, "no DO1 record"),
+             (C.Job("fe", "calibration", "x", 1000.0), float("nan"), 0.0, "no DO1 record")]
+    x = C.tabulate(study, noses, done, {}, "laboratory", "li_chen", C.Contexts({}, {})).set_index("nose").loc["x"]
+    assert math.isnan(x.u_calibration) and "not available: no DO1 record" in x.parts
+    assert x.u_combined == pytest.approx(x.u_chaos) and C.base_failures(done) == []

@@ -705,9 +705,11 @@ def _compare(args) -> int:
         say(f"interrupted ({err or 'SIGINT'}) after {len(done)} of {len(jobs)} runs"
             + (f"; partial table {where}" if where else ""))
         return 130
-    failed = [(j, e) for j, _, _, e in done if e]
-    for j, e in failed:
-        say(f"warning: {j.level} {j.variant} {j.nose} {j.velocity:g} m/s failed: {e}")
+    failed = C.base_failures(done)
+    for j, _, _, e in done:
+        if e:
+            say(f"warning: {j.level} {j.variant} {j.nose} {j.velocity:g} m/s failed: {e}"
+                + ("" if j.variant == "base" else " (that part of the uncertainty is left out)"))
     table = C.tabulate(study, noses, done, validated, args.calibration, args.strength_law, ctxs)
     try:
         from .figures.compare import write_comparison

@@ -204,15 +204,9 @@ def contexts(root, profile, strength_law, calibration, levels, mesh_check, fe_ma
     base = context_from_pipeline(root, profile, strength_law, calibration) if need_sim else Context(
         strength_law=strength_law)
     other_cal = "do1" if calibration == "laboratory" else "laboratory"
-    alt = context_from_pipeline(root, profile, OTHER_LAW[strength_law], other_cal) if need_sim else Context(
-        strength_law=OTHER_LAW[strength_law])
-    if need_sim:
-        # the closed forms' alternative is the other S law; the simulation levels' the other calibration
-        alt_cal = context_from_pipeline(root, profile, strength_law, other_cal)
-        alt_law = Context(strength_law=OTHER_LAW[strength_law])
-    else:
-        alt_cal, alt_law = None, alt
-    by = {"base": base, "calibration_law": alt_law, "calibration_sim": alt_cal}
+    # the closed forms' alternative is the other S law; the simulation levels' the other calibration
+    by = {"base": base, "calibration_law": Context(strength_law=OTHER_LAW[strength_law]),
+          "calibration_sim": context_from_pipeline(root, profile, strength_law, other_cal) if need_sim else None}
     names = {}
     for lv in levels:
         names[(lv, "calibration")] = (f"S law {OTHER_LAW[strength_law]} for {strength_law}" if lv in ("analytic", "trajectory")
@@ -307,6 +301,20 @@ def validated_errors(root, profile) -> dict:
             for r in rows}
 
 
+def _why(errors, level, variant, noses, velocity) -> str:
+    """The first error of a variant's runs of ``noses`` at ``velocity`` (why a part is not available)."""
+    for n in noses:
+        e = errors.get((level, variant, n, velocity))
+        if e:
+            return e
+    return "its runs did not finish"
+
+
+def base_failures(done) -> list:
+    """(job, error) of the base runs that failed: the comparison's depths are missing there."""
+    return [(j, e) for j, _, _, e in done if e and j.variant == "base"]
+
+
 def tabulate(study: Study, noses: dict, done: list, validated: dict, calibration: str, strength_law: str,
              ctxs: Contexts) -> pd.DataFrame:
     """The comparison's table: one row per level, nose and velocity."""
@@ -338,13 +346,17 @@ def tabulate(study: Study, noses: dict, done: list, validated: dict, calibration
                     cal_v = v if lv != "fe" else top
                     u["u_calibration"] = abs(contrast("calibration", n, cal_v) / contrast("base", n, cal_v) - 1.0)
                     parts.append(f"calibration ({ctxs.names.get((lv, 'calibration'), '')}"
-                                 + (f", at {top:g} m/s)" if lv == "fe" else ")"))
+                                 + (f", at {top:g} m/s)" if lv == "fe" else ")")
+                                 + ("" if math.isfinite(u["u_calibration"]) else " not available: "
+                                    + _why(errors, lv, "calibration", (n, ref), cal_v)))
                     if lv == "fe":
                         u["u_chaos"] = chaos[n]
                         parts.append(f"chaos ({study.members} realisations at {top:g} m/s)")
                         if study.mesh_check:
                             u["u_mesh"] = abs(contrast("mesh", n, top) / contrast("base", n, top) - 1.0)
-                            parts.append(f"mesh ({ctxs.names.get(('fe', 'mesh'), '')}, at {top:g} m/s)")
+                            parts.append(f"mesh ({ctxs.names.get(('fe', 'mesh'), '')}, at {top:g} m/s)"
+                                         + ("" if math.isfinite(u["u_mesh"]) else " not available: "
+                                            + _why(errors, lv, "mesh", (n, ref), top)))
                         else:
                             parts.append("mesh not included (--mesh-check)")
                 finite = [x for x in u.values() if math.isfinite(x)]

@@ -19,7 +19,7 @@ def compare_study(inputs, outputs, params):
           flush=True)
     done = C.run_jobs(study, noses, ctxs, jobs, params.workers,
                       lambda i, n: print(f"compare: run {i}/{n} done", flush=True) if i == n or i % 10 == 0 else None)
-    failed = [f"{j.level} {j.variant} {j.nose} {j.velocity:g} m/s: {e}" for j, _, _, e in done if e]
+    failed = [f"{j.level} {j.variant} {j.nose} {j.velocity:g} m/s: {e}" for j, e in C.base_failures(done)]
     if failed:
         raise RuntimeError("runs failed: " + "; ".join(failed))
     table = C.tabulate(study, noses, done, validated, "laboratory", "li_chen", ctxs)
