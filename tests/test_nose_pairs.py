@@ -37,3 +37,13 @@ def test_the_sharper_nose_is_a_and_the_ratio_is_measured():
     t = nose_pairs.pairs(shots, {"p": "p"})
     row = t[t.shot_b == "a1"].iloc[0]
     assert row.nose_a == "CRH 6" and row.measured_ratio == pytest.approx(0.9 / 0.5) and row.predicted_ratio == pytest.approx(1.8)
+
+
+def test_other_shapes_are_ordered_blunt_to_sharp():
+    shots = pd.DataFrame({"shot_id": ["f", "h", "o"], "diameter_m": [0.03] * 3, "fc_MPa": [40.0] * 3,
+                          "nose_shape": ["flat", "hemispherical", "ogive"], "crh": [float("nan"), float("nan"), 2.0],
+                          "velocity_ms": [300.0] * 3, "dop_m": [0.2, 0.3, 0.5]})
+    shots["p"] = shots.dop_m
+    t = nose_pairs.pairs(shots, {"p": "p"})
+    assert {(r.nose_a, r.nose_b) for r in t.itertuples()} == {("hemispherical", "flat"), ("CRH 2", "flat"),
+                                                              ("CRH 2", "hemispherical")}

@@ -172,3 +172,15 @@ def test_predict_skips_a_bad_nose_row_naming_it(tmp_path, nose, needle):
         w.writerows([row, ok])
     res = cli("predict", str(tmp_path / "shots.csv"), "--out", str(tmp_path / "out.csv"))
     assert res.returncode == 0 and "skipped row 2" in res.stderr and needle in res.stderr.split("skipped row 2")[1]
+
+
+@pytest.mark.parametrize("params,needle", [
+    ({"radius": "none", "nose_length": 0.06}, "radius"),
+    ({"radius": -0.01, "nose_length": 0.06}, "radius"),
+    ({"radius": A, "psi": "abc", "tip_radius": 0.001, "nstar": 0.1, "solve": "tip_radius"}, "ogive.psi"),
+    ({"radius": A, "nose_length": 0.06, "tip_radius": True}, "ogive.tip_radius"),
+])
+def test_bad_keys_are_named_before_solving(params, needle):
+    with pytest.raises(ParameterError) as err:
+        solve_nose("ogive", params)
+    assert needle in str(err.value)

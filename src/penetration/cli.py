@@ -205,7 +205,8 @@ def _compare_parser(sub):
                    help="a nose (give 2-12)")
     c.add_argument("--reference", default=None, help="label of the nose the contrasts are taken against (default: "
                    "the first)")
-    c.add_argument("--velocities", default=None, help="m/s: a list 400,600,800 or a range 400:1000:100 (ends included)")
+    c.add_argument("--velocities", default=None, help="m/s: a list 400,600,800 or a range 400:1000:100 (stop included "
+                   "where the steps reach it)")
     c.add_argument("--levels", default=None, help="comma-separated levels (default analytic)")
     c.add_argument("--members", type=int, default=None, help=f"fe level: realisations at the top velocity for the "
                    f"chaos band (default 2; 2-{MAX_MEMBERS})")
@@ -523,6 +524,7 @@ def _one_shot(args) -> int:
         rec["history"] = str(out)
     if fields_dir is not None:
         try:
+            res.asked_times = ctx.fe_snapshot_times
             rec["fields"] = _write_fields(res, shot, fields_dir)
         except (TargetError, OSError) as err:
             return _fail(f"--fields {fields_dir}: {getattr(err, 'strerror', None) or err}")
@@ -557,7 +559,7 @@ def _fields_request(args, ctx):
     if folder.exists() and not folder.is_dir():
         raise ParameterError("argument", "--fields", str(folder), "a folder (new or existing), not a file")
     try:
-        values = tuple(sorted({parse_number(x) for x in times.split(",") if x.strip()}))
+        values = tuple(sorted({parse_number(x.strip()) for x in times.split(",") if x.strip()}))
     except ValueError:
         raise ParameterError("argument", "--field-times-ms", times, f"numbers (ms) separated by commas: {NUMBER_FORM}") from None
     if len(values) > MAX_FIELD_TIMES or any(not (0 < v <= 1e4) for v in values):
@@ -577,6 +579,11 @@ def _write_fields(res, shot, folder) -> list:
     from .figures.fe_fields import draw_snapshot
     from .pipeline.io import write_vtu
     snaps, conn = res.fields
+    asked = [t for t in getattr(res, "asked_times", ()) if math.isfinite(t)]
+    late = [t for t in asked if t > snaps[-1]["t"]]
+    if late:
+        print(f"note: field times {', '.join(f'{1e3 * t:g}' for t in late)} ms fall after the run's end at "
+              f"{1e3 * snaps[-1]['t']:.3f} ms: the end is written instead", file=sys.stderr)
     written = []
     for k, snap in enumerate(snaps):
         stem = "fields_end" if k == len(snaps) - 1 else f"fields_t{1e3 * snap['t']:.3f}ms"
@@ -634,19 +641,24 @@ def main(argv=None) -> int:
 
 
 def _velocities(text):
-    """Velocities (m/s) from 'a,b,c' or 'start:stop:step' (ends included)."""
-    if ":" in text:
-        parts = text.split(":")
-        if len(parts) != 3:
-            raise ParameterError("argument", "--velocities", text, "a list a,b,c or a range start:stop:step")
-        a, b, step = (parse_number(x) for x in parts)
-        if not (step > 0 and b >= a):
-            raise ParameterError("argument", "--velocities", text, "start <= stop and step > 0")
-        n = int(round((b - a) / step))
-        if n > 1000:
-            raise ParameterError("argument", "--velocities", text, "at most 50 velocities")
-        return tuple(a + k * step for k in range(n + 1) if a + k * step <= b * (1 + 1e-12))
-    return tuple(parse_number(x) for x in text.split(","))
+    """Velocities (m/s) from 'a,b,c' or 'start:stop:step' (stop included where the steps reach it)."""
+    from .shots.compare import MAX_VELOCITIES
+    allowed = (f"a list a,b,c or a range start:stop:step of at most {MAX_VELOCITIES} velocities (m/s; numbers as "
+               f"{NUMBER_FORM})")
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise ValueError
+            a, b, step = (parse_number(x.strip()) for x in parts)
+            if not (step > 0 and b >= a) or (b - a) / step > MAX_VELOCITIES:
+                raise ParameterError("argument", "--velocities", text, f"start <= stop, step > 0, at most "
+                                     f"{MAX_VELOCITIES} velocities")
+            n = int(math.floor((b - a) / step * (1 + 1e-12)))
+            return tuple(a + k * step for k in range(n + 1))
+        return tuple(parse_number(x.strip()) for x in text.split(","))
+    except ValueError:
+        raise ParameterError("argument", "--velocities", text, allowed) from None
 
 
 def _study(args):
@@ -680,15 +692,19 @@ def _compare(args) -> int:
             return _fail(f"--out {args.out} is a file; allowed: a folder (new or existing)")
         for path in files.values():
             check_target(path)
+        if not args.max_minutes > 0:
+            raise ParameterError("argument", "--max-minutes", args.max_minutes, "--max-minutes > 0")
+        if args.workers is not None and not 1 <= args.workers <= 64:
+            raise ParameterError("argument", "--workers", args.workers, "1 to 64 (fe shots run this many at a time)")
         study = _study(args)
+        workers = C.with_workers(args.workers)
         noses, ctxs, validated = C.prepare(study, args.root, args.profile, args.strength_law, args.calibration,
-                                           60.0 * args.max_minutes, say)
+                                           60.0 * args.max_minutes, say, workers)
     except TargetError as err:
         return _fail(f"--out {args.out}: {err}")
     except (ParameterError, ConfigError, OSError) as err:
         return _fail(str(err))
     jobs = C.plan(study)
-    workers = C.with_workers(args.workers)
     say(f"compare: {len(jobs)} runs ({sum(j.level == 'fe' for j in jobs)} at the fe level, {workers} at a time)")
     done = []
     _interruptible()

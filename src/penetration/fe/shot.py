@@ -211,8 +211,9 @@ def run_shot(spec: RunSpec, keep_model=False, max_attempts=3, snapshot_times=())
 
         def sample(m, t):
             pmax[0] = max(pmax[0], nose_pressure(m, proj, nose, settings.element_size))
-            while pending and t >= pending[0] - 1e-15:
-                pending.pop(0)
+            if pending and t >= pending[0] - 1e-15:   # one snapshot for every requested time up to now
+                while pending and t >= pending[0] - 1e-15:
+                    pending.pop(0)
                 shots.append(snapshot(m, t, proj.Zt))
 
         t0 = time.perf_counter()

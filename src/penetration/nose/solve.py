@@ -18,7 +18,7 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from ..units import NUMBER_FORM, parse_number
-from .geometry import NOSES, PSI_MAX
+from .geometry import NOSES, PSI_MAX, SIZE
 from .nstar import nstar
 
 CONSTRAINTS = {"nose_length": "the nose's length, tip to shank (m)", "nstar": "the nose shape factor N* (Eq 5)"}
@@ -34,8 +34,10 @@ def _grid(kind, key, params):
     """Values of the free parameter ``key`` to scan, within what the nose's own checks allow (the checks refuse
     the rest: those points are skipped)."""
     a = params.get("radius")
-    if key == "radius" or a is None:
+    if key == "radius":
         raise ParameterError(kind, "solve", key, "a key other than radius (the shank radius is given)")
+    if a is None or not (SIZE[0] <= a <= SIZE[1]):
+        raise ParameterError(kind, "radius", a, f"{SIZE[0]:g} <= radius <= {SIZE[1]:g} m (the shank radius)")
     if key == "psi":
         return np.geomspace(0.5, PSI_MAX, SCAN_POINTS)
     if key == "tip_radius":
@@ -100,6 +102,7 @@ def solve_nose(kind, params: dict):
     name, target = constraint
     fields = [f for f in dataclasses.fields(cls)]
     names = [f.name for f in fields]
+    fixed = _parsed(kind, names, own) if kind not in ("flat", "table") else own   # every given key checked first
     free = [f.name for f in fields if f.default is dataclasses.MISSING and f.name not in own]
     if solve_key is not None:
         if solve_key not in names or solve_key == "radius":
@@ -121,7 +124,6 @@ def solve_nose(kind, params: dict):
     if name == "nose_length" and kind in ("cone", "minimum_nstar") and key == "length":
         nose = cls.from_keywords(**own, length=target)
         return nose, Solution(key, target, name, target, nose.length)
-    fixed = _parsed(kind, names, own)
     grid = _grid(kind, key, {**fixed, "radius": _radius(kind, fixed)})
 
     def value(v):
@@ -160,10 +162,14 @@ def _parsed(kind, names, own):
     for k, v in own.items():
         if k not in names:
             raise ParameterError(kind, k, v, f"a key among {names} or a constraint ({', '.join(CONSTRAINTS)}, solve)")
-        if v in (None, "none"):
+        if v is None or (isinstance(v, str) and v == "none"):
+            if k == "radius":
+                raise ParameterError(kind, k, v, f"{SIZE[0]:g} <= radius <= {SIZE[1]:g} m (the shank radius)")
             out[k] = None
             continue
         try:
+            if isinstance(v, bool) or not isinstance(v, (int, float, str)):
+                raise ValueError
             out[k] = float(parse_number(v)) if isinstance(v, str) else float(v)
         except ValueError:
             raise ParameterError(kind, k, v, f"a number in SI units: {NUMBER_FORM}") from None

@@ -72,7 +72,8 @@ def levels(read) -> str:
             w = walls[level]
             cost = f"{_span(w['median_wall_time_per_shot_s'])} (up to {_span(w['max_wall_time_per_shot_s'])})"
         default = " (default)" if a["calibration"] == "laboratory" else ""
-        p = pairs[(level, a["calibration"])]
+        p = pairs.get((level, a["calibration"]), {k: "nan" for k in ("median_abs_contrast_error",
+                                                                     "p90_abs_contrast_error", "mean_contrast_error")})
         lines.append(f"| `{level}` | {a['calibration']}{default} | {cost} | {_pct(a['median_abs_rel_err'])}, "
                      f"{_pct(a['p90_abs_rel_err'])}, {float(a['mean_rel_err']) * 100:+.0f} % ({a['scoring']}, "
                      f"{a['shots']} shots) | {_pct(p['median_abs_contrast_error'])}, {_pct(p['p90_abs_contrast_error'])}, "

@@ -9,6 +9,7 @@ ends in a raw traceback and never answers silently.
 from __future__ import annotations
 
 import csv
+import io
 import math
 from pathlib import Path
 
@@ -61,7 +62,7 @@ def read_record(path, columns: dict, optional: dict | None = None, min_rows: int
     if "\0" in text:
         raise RecordError(where, "file", "binary (NUL bytes)", "a UTF-8 text CSV")
     try:
-        reader = csv.reader(text.splitlines())
+        reader = csv.reader(io.StringIO(text, newline=""))
         header = next(reader, [])
         rows = list(reader)
     except csv.Error as err:

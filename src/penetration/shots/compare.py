@@ -62,7 +62,7 @@ class Study:
         if not 1 <= len(self.velocities) <= MAX_VELOCITIES:
             raise ParameterError("compare", "velocities", len(self.velocities), f"1 to {MAX_VELOCITIES} velocities")
         for v in self.velocities:
-            field_value("velocity_ms", repr(float(v)))   # in the shot field's range
+            _field("velocity_ms", v)   # in the shot field's range
         if len(set(self.velocities)) != len(self.velocities):
             raise ParameterError("compare", "velocities", list(self.velocities), "each velocity once")
         for lv in self.levels:
@@ -76,8 +76,23 @@ class Study:
         unknown = sorted(set(self.shot) - set(SHOT_KEYS))
         if unknown:
             raise ParameterError("compare", unknown[0], self.shot[unknown[0]], f"a shot key among {list(SHOT_KEYS)}")
+        for key in ("mass_kg", "diameter_m", "fc_MPa"):
+            if key not in self.shot:
+                raise ParameterError("compare", key, None, f"required: the {SHOT_FIELDS[key].what}, "
+                                     f"{SHOT_FIELDS[key].allowed}")
+        for key, value in self.shot.items():
+            _field(key, value)
         if "fe" in self.levels and "length_m" not in self.shot:
             raise ParameterError("compare", "length_m", None, "required at the fe level: the projectile's length (m)")
+
+
+def _field(name, value) -> float:
+    """A shot field's value checked against its range (shots.fields), refused as a ParameterError naming it."""
+    from .fields import ShotError
+    try:
+        return field_value(name, str(value))
+    except ShotError as err:
+        raise ParameterError("compare", name, value, err.allowed) from None
 
 
 STUDY_KEYS = ("noses", "reference", "shot", "velocities", "levels", "members", "mesh_check", "title")
@@ -95,21 +110,36 @@ def study_from_doc(doc, where="study", **override) -> Study:
     noses = override.get("noses")
     if noses is None:
         noses = {}
-        for label, spec in (doc.get("noses") or {}).items():
+        spec_noses = doc.get("noses") or {}
+        if not isinstance(spec_noses, dict):
+            raise ParameterError(where, "noses", spec_noses, "a mapping label: {kind: ..., key: value}")
+        for label, spec in spec_noses.items():
             if not isinstance(spec, dict) or "kind" not in spec:
                 raise ParameterError(where, f"noses.{label}", spec, "a mapping with kind and the nose's keys")
-            noses[str(label)] = (spec["kind"], {k: str(v) for k, v in spec.items() if k != "kind"})
-    shot = {k: str(v) for k, v in (doc.get("shot") or {}).items()}
+            noses[str(label)] = (str(spec["kind"]), {k: str(v) for k, v in spec.items() if k != "kind"})
+    shot_doc = doc.get("shot") or {}
+    if not isinstance(shot_doc, dict):
+        raise ParameterError(where, "shot", shot_doc, f"a mapping of shot keys ({', '.join(SHOT_KEYS)})")
+    shot = {k: str(v) for k, v in shot_doc.items()}
     shot.update(override.get("shot") or {})
     pick = lambda key, default: override[key] if override.get(key) is not None else doc.get(key, default)  # noqa: E731
-    try:
-        velocities = tuple(float(v) for v in pick("velocities", ()))
-        members = int(pick("members", 2))
-    except (TypeError, ValueError):
-        raise ParameterError(where, "velocities or members", doc.get("velocities"), "numbers") from None
+    velocities = pick("velocities", ())
+    if not isinstance(velocities, (list, tuple)) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                           for v in velocities):
+        raise ParameterError(where, "velocities", velocities, "a list of numbers (m/s)")
+    members = pick("members", 2)
+    if isinstance(members, bool) or not isinstance(members, int):
+        raise ParameterError(where, "members", members, f"a whole number, 2 to {MAX_MEMBERS}")
+    levels = pick("levels", ("analytic",))
+    levels = (levels,) if isinstance(levels, str) else levels
+    if not isinstance(levels, (list, tuple)):
+        raise ParameterError(where, "levels", levels, f"a list of levels among {list(LEVELS)}")
+    mesh_check = pick("mesh_check", False)
+    if not isinstance(mesh_check, bool):
+        raise ParameterError(where, "mesh_check", mesh_check, "true or false")
     return Study(noses=noses, reference=str(pick("reference", None) or next(iter(noses), "")), shot=shot,
-                 velocities=velocities, levels=tuple(pick("levels", ("analytic",))), members=members,
-                 mesh_check=bool(pick("mesh_check", False)), title=str(pick("title", "")))
+                 velocities=tuple(float(v) for v in velocities), levels=tuple(str(x) for x in levels),
+                 members=members, mesh_check=mesh_check, title=str(pick("title", "")))
 
 
 def parse_nose(text: str):
@@ -143,6 +173,8 @@ def build_noses(study: Study):
             raise ParameterError("compare", f"nose {label}", "radius", "no radius: the shank radius is diameter_m/2")
         keys = dict(keys)
         if kind == "ogive" and "crh" in keys:
+            if "psi" in keys:
+                raise ParameterError("compare", f"nose {label}", "crh", "psi or crh, not both (crh is psi's other name)")
             keys["psi"] = keys.pop("crh")
         out[label] = solve_nose(kind, {"radius": radius, **keys})
     return out
@@ -196,7 +228,7 @@ class Contexts:
         return self.by_variant[key]
 
 
-def contexts(root, profile, strength_law, calibration, levels, mesh_check, fe_max_seconds=math.inf):
+def contexts(root, profile, strength_law, calibration, levels, mesh_check, fe_max_seconds=math.inf, workers=1):
     """Contexts for the variants the plan uses, from the pipeline under ``root``."""
     from .ladder import Context
     from .records import context_from_pipeline
@@ -214,9 +246,12 @@ def contexts(root, profile, strength_law, calibration, levels, mesh_check, fe_ma
     if mesh_check and "fe" in levels:
         by["mesh"] = context_from_pipeline(root, "full" if profile == "ci" else "ci", strength_law, calibration)
         names[("fe", "mesh")] = f"mesh {'full' if profile == 'ci' else 'ci'} for {profile}"
+    from ..pipeline.config import available_memory
+    memory = available_memory() / max(1, workers)   # fe shots run workers at a time
     for c in by.values():
         if c is not None:
             c.fe_max_seconds = fe_max_seconds
+            c.fe_available_memory = memory
     return Contexts(by, names)
 
 
@@ -229,14 +264,15 @@ def context_for(ctxs: Contexts, job: Job):
 
 
 def _run_one(args):
-    """One job in a worker: (job, depth m, wall s, error text or None)."""
+    """One job in a worker: (job, depth m, wall s, error text or None); any error of the run is kept as its text (an
+    interrupt is not caught)."""
     from .ladder import run
     job, shot, ctx = args
     try:
         res = run(shot, job.level, ctx)
         return job, float(res.depth_m), float(res.wall_time_s), None
-    except (ParameterError, RuntimeError, ValueError) as err:
-        return job, math.nan, 0.0, str(err)
+    except Exception as err:   # noqa: BLE001 -- a failed run is a row with its reason, never the whole study lost
+        return job, math.nan, 0.0, f"{type(err).__name__}: {err}"
 
 
 def _worker_init():
@@ -266,17 +302,23 @@ def run_jobs(study: Study, noses: dict, ctxs: Contexts, jobs: list, workers: int
         import multiprocessing as mp
         from concurrent.futures import ProcessPoolExecutor, as_completed
         method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
-        with ProcessPoolExecutor(workers, mp_context=mp.get_context(method), initializer=_worker_init) as pool:
-            futures = [pool.submit(_run_one, args(j)) for j in heavy]
-            try:
-                for f in as_completed(futures):
+        pool = ProcessPoolExecutor(workers, mp_context=mp.get_context(method), initializer=_worker_init)
+        finished = False
+        try:
+            futures = {pool.submit(_run_one, args(j)): j for j in heavy}
+            for f in as_completed(futures):
+                try:
                     done.append(f.result())
-                    if progress:
-                        progress(len(done), total)
-            except BaseException:
-                for f in futures:
-                    f.cancel()
-                raise
+                except Exception as err:   # noqa: BLE001 -- a worker that died (out of memory, killed)
+                    done.append((futures[f], math.nan, 0.0, f"the worker running it ended: {type(err).__name__}: {err}"))
+                if progress:
+                    progress(len(done), total)
+            finished = True
+        finally:
+            if not finished:   # an interrupt: the running shots are stopped, not waited for
+                for proc in list(getattr(pool, "_processes", {}).values()):
+                    proc.terminate()
+            pool.shutdown(wait=finished, cancel_futures=True)
     else:
         for j in heavy:
             done.append(_run_one(args(j)))
@@ -329,13 +371,16 @@ def tabulate(study: Study, noses: dict, done: list, validated: dict, calibration
         u_val, val_scope = validated.get(cal_key, (math.nan, "no committed nose-pair validation"))
 
         def contrast(variant, nose, v):
-            return depth.get((lv, variant, nose, v), math.nan) / depth.get((lv, variant, ref, v), math.nan)
+            num, den = depth.get((lv, variant, nose, v), math.nan), depth.get((lv, variant, ref, v), math.nan)
+            return num / den if den > 0 else math.nan
 
-        chaos = {}
+        chaos, chaos_n = {}, {}
         if lv == "fe":
             for n in study.noses:
-                c = [contrast("base" if k == 0 else f"member {k}", n, top) for k in range(study.members)]
-                chaos[n] = float(np.std(c, ddof=1) / np.mean(c)) if np.all(np.isfinite(c)) else math.nan
+                c = np.array([contrast("base" if k == 0 else f"member {k}", n, top) for k in range(study.members)])
+                c = c[np.isfinite(c)]
+                chaos_n[n] = c.size
+                chaos[n] = float(np.std(c, ddof=1) / np.mean(c)) if c.size >= 2 else math.nan
         for v in study.velocities:
             for n, (nose, sol) in noses.items():
                 c = contrast("base", n, v)
@@ -351,7 +396,9 @@ def tabulate(study: Study, noses: dict, done: list, validated: dict, calibration
                                     + _why(errors, lv, "calibration", (n, ref), cal_v)))
                     if lv == "fe":
                         u["u_chaos"] = chaos[n]
-                        parts.append(f"chaos ({study.members} realisations at {top:g} m/s)")
+                        parts.append(f"chaos ({chaos_n[n]} realisations at {top:g} m/s)" if chaos_n[n] >= 2 else
+                                     f"chaos not available: {chaos_n[n]} of {study.members} realisations at {top:g} m/s "
+                                     "finished")
                         if study.mesh_check:
                             u["u_mesh"] = abs(contrast("mesh", n, top) / contrast("base", n, top) - 1.0)
                             parts.append(f"mesh ({ctxs.names.get(('fe', 'mesh'), '')}, at {top:g} m/s)"
@@ -402,7 +449,7 @@ def output_files(out) -> dict:
 
 
 def prepare(study: Study, root, profile="ci", strength_law="li_chen", calibration="laboratory", fe_max_seconds=math.inf,
-            say=None):
+            say=None, workers=1):
     """Everything checked before any run: (the noses, the contexts, the validated contrast errors); ``say`` gets
     the solved noses and what the comparison reuses."""
     say = say or (lambda line: None)
@@ -411,10 +458,15 @@ def prepare(study: Study, root, profile="ci", strength_law="li_chen", calibratio
         if sol is not None:
             say(f"nose {label}: {sol.describe()}")
     shots(study, noses, max(study.velocities))   # the shot's checks
-    ctxs = contexts(root, profile, strength_law, calibration, study.levels, study.mesh_check, fe_max_seconds)
+    ctxs = contexts(root, profile, strength_law, calibration, study.levels, study.mesh_check, fe_max_seconds, workers)
     for line in reused(ctxs, study.levels):
         say(f"reuses {line}")
-    validated = validated_errors(root, profile if "fe" in study.levels else "full")
+    from ..pipeline.records import RecordError
+    try:
+        validated = validated_errors(root, profile if "fe" in study.levels else "full")
+    except RecordError as err:
+        say(f"warning: {err}; the validated part of the contrasts' uncertainty is left out")
+        validated = {}
     return noses, ctxs, validated
 
 

@@ -18,6 +18,13 @@ import pandas as pd
 SERIES_KEYS = ("diameter_m", "fc_MPa")
 
 
+def sharpness(row) -> tuple:
+    """An order of noses from blunt to sharp: flat, hemisphere (CRH 0.5), ogives by CRH, other shapes by name."""
+    shape = str(row["nose_shape"])
+    crh = {"flat": 0.0, "hemispherical": 0.5}.get(shape, row["crh"] if shape == "ogive" else float("inf"))
+    return (float(crh), nose_label(row))
+
+
 def nose_label(row) -> str:
     return f"CRH {row['crh']:g}" if row["nose_shape"] == "ogive" else str(row["nose_shape"])
 
@@ -25,14 +32,14 @@ def nose_label(row) -> str:
 def pairs(shots: pd.DataFrame, predictions: dict) -> pd.DataFrame:
     """One row per measured nose pair and level: the shots, their noses, the measured depth ratio and the
     contrast error of each level. ``predictions``: level name -> column of predicted depth (m) in ``shots``.
-    The sharper nose (the larger CRH) is a; nose_shape other than ogive is ordered by name."""
+    The sharper nose is a (sharpness: flat, hemisphere, ogives by CRH, other shapes by name)."""
     rows = []
     for key, group in shots.groupby(list(SERIES_KEYS), sort=True):
         group = group.sort_values("shot_id")
         for (_, p), (_, q) in itertools.combinations(group.iterrows(), 2):
             if nose_label(p) == nose_label(q):
                 continue
-            a, b = (p, q) if (p["crh"], nose_label(p)) > (q["crh"], nose_label(q)) else (q, p)
+            a, b = (p, q) if sharpness(p) > sharpness(q) else (q, p)
             base = {"series_diameter_m": key[0], "series_fc_MPa": key[1], "shot_a": a["shot_id"], "nose_a": nose_label(a),
                     "velocity_a_ms": a["velocity_ms"], "shot_b": b["shot_id"], "nose_b": nose_label(b),
                     "velocity_b_ms": b["velocity_ms"], "measured_ratio": a["dop_m"] / b["dop_m"]}

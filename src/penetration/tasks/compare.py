@@ -13,7 +13,8 @@ from ..shots import compare as C
 @task
 def compare_study(inputs, outputs, params):
     study = C.study_from_doc(load_with(Path(inputs.study), {}), f"study {inputs.study}")
-    noses, ctxs, validated = C.prepare(study, ".", params.profile, "li_chen", "laboratory", say=print)
+    noses, ctxs, validated = C.prepare(study, ".", params.profile, "li_chen", "laboratory", say=print,
+                                       workers=params.workers)
     jobs = C.plan(study)
     print(f"compare: {len(jobs)} runs ({sum(j.level == 'fe' for j in jobs)} at the fe level, {params.workers} at a time)",
           flush=True)
