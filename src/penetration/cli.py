@@ -705,7 +705,7 @@ def _compare(args) -> int:
     except (ParameterError, ConfigError, OSError) as err:
         return _fail(str(err))
     jobs = C.plan(study)
-    say(f"compare: {len(jobs)} runs ({sum(j.level == 'fe' for j in jobs)} at the fe level, {workers} at a time)")
+    say(C.describe_plan(jobs, workers))
     done = []
     _interruptible()
     t0 = time.perf_counter()

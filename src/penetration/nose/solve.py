@@ -124,7 +124,7 @@ def solve_nose(kind, params: dict):
     if name == "nose_length" and kind in ("cone", "minimum_nstar") and key == "length":
         nose = cls.from_keywords(**own, length=target)
         return nose, Solution(key, target, name, target, nose.length)
-    grid = _grid(kind, key, {**fixed, "radius": _radius(kind, fixed)})
+    grid = _grid(kind, key, fixed)
 
     def value(v):
         try:
@@ -175,8 +175,3 @@ def _parsed(kind, names, own):
             raise ParameterError(kind, k, v, f"a number in SI units: {NUMBER_FORM}") from None
     return out
 
-
-def _radius(kind, fixed):
-    if "radius" not in fixed:
-        raise ParameterError(kind, "radius", None, "required: the shank radius (m)")
-    return fixed["radius"]

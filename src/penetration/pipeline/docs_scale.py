@@ -49,7 +49,7 @@ def _validations(read):
 def scale_effect(read) -> str:
     """Per level and variant of the scale effect: the factor fitted on each series alone and their ratio, the pooled
     leave-one-series-out errors, each series' mean error, DO1's prediction (fold all) and whether the goals hold."""
-    do1, cal, _ = _facts(read)
+    do1, cal, n = _facts(read)
     lines = [f"| level | variant | mechanisms | factor on {cal['forrestal2003']} / {cal['forrestal1994']} | ratio | "
              f"held-out median / p90 &#124;error&#124; | mean error {cal['forrestal1994']} / {cal['forrestal2003']} | "
              f"DO1 ({do1}) | goals met |", "|---|---|---|---|---|---|---|---|---|"]
@@ -69,7 +69,7 @@ def scale_effect(read) -> str:
     tail = (f"\nGoals: held-out median |error| <= {100 * GOALS['loso_median']:.0f} % and 90th percentile <= "
             f"{100 * GOALS['loso_p90']:.0f} % (both series left out in turn, pooled), the two series' factors within a "
             f"ratio of {GOALS['split_ratio']:.2f}, DO1 within {100 * GOALS['do1']:.0f} % of {do1} (predicted with the "
-            f"factor fitted on all {_facts(read)[2]} laboratory shots; DO1 enters no fit).")
+            f"factor fitted on all {n} laboratory shots; DO1 enters no fit).")
     if missing:
         tail += " Not yet run: " + ", ".join(f"`snakemake -c2 figures/scale/validation_{lv}.csv`" for lv in missing) + "."
     return "\n".join(lines) + "\n" + tail + "\n"

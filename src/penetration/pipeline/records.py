@@ -11,7 +11,6 @@ from __future__ import annotations
 import csv
 import io
 import math
-from pathlib import Path
 
 from ..errors import ParameterError
 
@@ -100,6 +99,3 @@ def read_record(path, columns: dict, optional: dict | None = None, min_rows: int
                           "header (a truncated record)")
     return out
 
-
-def exists(path) -> bool:
-    return Path(path).is_file()

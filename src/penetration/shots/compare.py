@@ -34,6 +34,7 @@ from ..levels import LEVELS
 from ..nose.nstar import nstar
 from ..nose.solve import solve_nose
 from .fields import SHOT_FIELDS, field_value
+from .ladder import Context, UserShot, psi_from_crh, run, shot_si
 
 MEMBER_STEP = 1e-9          # relative velocity step between realisations (the FE chaos studies' perturbation)
 MAX_NOSES, MAX_VELOCITIES, MAX_MEMBERS = 12, 50, 10
@@ -171,22 +172,14 @@ def build_noses(study: Study):
                                  "by its parameters; every nose of a comparison has the study's shank radius)")
         if "radius" in keys:
             raise ParameterError("compare", f"nose {label}", "radius", "no radius: the shank radius is diameter_m/2")
-        keys = dict(keys)
-        if kind == "ogive" and "crh" in keys:
-            if "psi" in keys:
-                raise ParameterError("compare", f"nose {label}", "crh", "psi or crh, not both (crh is psi's other name)")
-            keys["psi"] = keys.pop("crh")
-        out[label] = solve_nose(kind, {"radius": radius, **keys})
+        out[label] = solve_nose(kind, {"radius": radius, **psi_from_crh(kind, keys)})
     return out
 
 
 def shots(study: Study, noses: dict, velocity: float, member: int = 0):
     """label -> levels.UserShot at ``velocity`` (moved by member x MEMBER_STEP, relative)."""
-    from .ladder import UserShot
-    values = {k: field_value(k, str(v)) * SHOT_FIELDS[k].si for k, v in study.shot.items()}
-    kw = {"mass": values["mass_kg"], "fc": values["fc_MPa"],
-          "density": values.get("target_density_kgm3", SHOT_FIELDS["target_density_kgm3"].default),
-          "length": values.get("length_m")}
+    kw = {"density": SHOT_FIELDS["target_density_kgm3"].default,
+          **shot_si({k: field_value(k, str(v)) for k, v in study.shot.items()})}
     v = float(velocity) * (1.0 + member * MEMBER_STEP)
     return {label: UserShot(nose, velocity=v, label=f"{label} {velocity:g} m/s", **kw)
             for label, (nose, _) in noses.items()}
@@ -216,6 +209,11 @@ def plan(study: Study) -> list:
     return jobs
 
 
+def describe_plan(jobs, workers) -> str:
+    """The line that announces a comparison's runs."""
+    return f"compare: {len(jobs)} runs ({sum(j.level == 'fe' for j in jobs)} at the fe level, {workers} at a time)"
+
+
 @dataclass
 class Contexts:
     """The levels' contexts of each variant: 'base', 'calibration' (the other calibration), 'mesh' (fe's other
@@ -230,7 +228,6 @@ class Contexts:
 
 def contexts(root, profile, strength_law, calibration, levels, mesh_check, fe_max_seconds=math.inf, workers=1):
     """Contexts for the variants the plan uses, from the pipeline under ``root``."""
-    from .ladder import Context
     from .records import context_from_pipeline
     need_sim = any(lv in ("cavity", "fe") for lv in levels)
     base = context_from_pipeline(root, profile, strength_law, calibration) if need_sim else Context(
@@ -266,7 +263,6 @@ def context_for(ctxs: Contexts, job: Job):
 def _run_one(args):
     """One job in a worker: (job, depth m, wall s, error text or None); any error of the run is kept as its text (an
     interrupt is not caught)."""
-    from .ladder import run
     job, shot, ctx = args
     try:
         res = run(shot, job.level, ctx)
@@ -292,8 +288,13 @@ def run_jobs(study: Study, noses: dict, ctxs: Contexts, jobs: list, workers: int
     heavy = [j for j in jobs if j.level == "fe"]
     total = len(jobs)
 
+    built = {}
+
     def args(j):
-        return j, shots(study, noses, j.velocity, j.member)[j.nose], context_for(ctxs, j)
+        key = (j.velocity, j.member)
+        if key not in built:
+            built[key] = shots(study, noses, j.velocity, j.member)
+        return j, built[key][j.nose], context_for(ctxs, j)
     for j in cheap:
         done.append(_run_one(args(j)))
         if progress:

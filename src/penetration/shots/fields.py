@@ -152,11 +152,6 @@ def row_radius(row, base=None):
     return 0.5 * field_value("diameter_m", given)
 
 
-def shot_nstar(row, base=None) -> float:
-    """N* of a shot's nose from its nose_shape and nose columns (nose_columns), at the row's shank radius."""
-    return nstar(row_nose(row, row_radius(row, base), base))
-
-
 def _number(row, name, allowed):
     try:
         return parse_number(row.get(name, ""))
@@ -190,7 +185,7 @@ def shot_values(row, base=None) -> dict:
 def predicted_depth(row, law="li_chen", base=None) -> float:
     """Eq 9 depth (m) of one shot row, S from the published S(fc) law ``law``."""
     v = shot_values(row, base)
-    n = shot_nstar(row, base)
+    n = nstar(row_nose(row, 0.5 * v["diameter_m"], base))
     fc = v["fc_MPa"] * MPA
     target = Target(v["target_density_kgm3"], fc, float(strength_factor(fc, law)))
     depth = float(penetration_depth(v["mass_kg"], 0.5 * v["diameter_m"], n, target, v["velocity_ms"]))

@@ -322,7 +322,7 @@ def run(shot: UserShot, level: str, ctx: Context, log=None) -> LevelResult:
 
 
 # ------------------------------------------------------------------ shots CSV rows at any level
-def _si(values: dict) -> dict:
+def shot_si(values: dict) -> dict:
     """UserShot keyword arguments (SI) from shot field values in their units (those given)."""
     return {SHOT_FIELDS[name].attribute: v * SHOT_FIELDS[name].si for name, v in values.items()
             if SHOT_FIELDS[name].attribute}
@@ -335,7 +335,7 @@ def user_shot(row, base=None) -> UserShot:
     v = shot_values(row, base)
     nose = row_nose(row, 0.5 * v["diameter_m"], base)
     try:
-        return UserShot(nose, **_si(v), label=row.get("shot_id", ""))
+        return UserShot(nose, **shot_si(v), label=row.get("shot_id", ""))
     except ValueError as err:
         raise ShotError(str(err)) from None
 
@@ -353,6 +353,21 @@ def nose_keys(kind) -> list:
         return ["path"]
     keys = [f.name for f in dataclasses.fields(NOSES[kind]) if f.name != "radius"]
     return keys + (["crh"] if kind == "ogive" else []) + ([*CONSTRAINTS, "solve"] if kind != "flat" else [])
+
+
+def psi_from_crh(kind, keys: dict) -> dict:
+    """An ogive's keys with crh (the shots CSV's name for psi, checked against its range) given as psi."""
+    if kind != "ogive" or "crh" not in keys:
+        return keys
+    keys = dict(keys)
+    if "psi" in keys:
+        raise ParameterError("ogive", "crh", keys["crh"], f"psi or crh, not both (psi={keys['psi']} is given): crh is "
+                             "the shots CSV's name for psi")
+    try:
+        keys["psi"] = crh_value(keys.pop("crh"))
+    except ShotError as err:
+        raise ParameterError("ogive", "crh", err.value, err.allowed) from None
+    return keys
 
 
 def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
@@ -391,15 +406,7 @@ def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
                 values[name] = field_value(name, text)
             except ShotError as err:
                 raise ParameterError("shot", name, text, err.allowed) from None
-    if kind == "ogive" and "crh" in kw:
-        if "psi" in kw:
-            raise ParameterError("ogive", "crh", kw["crh"], f"psi or crh, not both (psi={kw['psi']} is given): crh is "
-                                 "the shots CSV's name for psi")
-        try:
-            kw["psi"] = crh_value(kw["crh"])
-        except ShotError as err:
-            raise ParameterError("ogive", "crh", kw["crh"], err.allowed) from None
-        del kw["crh"]
+    kw = psi_from_crh(kind, kw)
     if kind == "table":
         nose = solve_nose(kind, kw)[0]
         if "diameter_m" in values and not math.isclose(values["diameter_m"], 2.0 * nose.radius, rel_tol=1e-9):
@@ -407,7 +414,7 @@ def shot_from_keywords(kind, keywords: dict, label="") -> UserShot:
                                  f"last y, {nose.radius:g} m): {2.0 * nose.radius:g} m, or leave diameter_m out")
     else:
         nose = solve_nose(kind, {"radius": 0.5 * values["diameter_m"], **kw})[0]
-    return UserShot(nose, **_si(values), label=label, defaults=tuple(defaults))
+    return UserShot(nose, **shot_si(values), label=label, defaults=tuple(defaults))
 
 
 # columns a prediction adds (one the input already has is replaced)

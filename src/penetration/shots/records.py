@@ -236,10 +236,9 @@ def scale_effect_accuracy(root, level, variant):
     rows = [r for r in scale_validation_rows(path) if r["level"] == level and r["variant"] == variant]
     if len(rows) != 1:
         return None
-    row = pd.DataFrame(rows)
     cfg = root_config(root)
     refs = reference.load_reference(root / cfg["reference"])
-    return {**row.iloc[0].to_dict(), "do1_diameter_m": refs["table2.diameter"].si}
+    return {**rows[0], "do1_diameter_m": refs["table2.diameter"].si}
 
 
 def cavity_calibration_path(root, calibration) -> Path:
@@ -321,8 +320,7 @@ def validated_accuracy(root=".", profile="full", calibration="laboratory"):
             continue
         errors[level] = r
     try:
-        ValidatedRange.from_rows(rows)
+        return ValidatedRange.from_rows(rows), errors
     except (KeyError, ValueError) as err:
         raise RecordError(f"record {root / cfg['validation']['shots']}", "rows", str(err),
                           "the development shots' columns as numbers") from None
-    return ValidatedRange.from_rows(rows), errors

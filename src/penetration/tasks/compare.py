@@ -16,8 +16,7 @@ def compare_study(inputs, outputs, params):
     noses, ctxs, validated = C.prepare(study, ".", params.profile, "li_chen", "laboratory", say=print,
                                        workers=params.workers)
     jobs = C.plan(study)
-    print(f"compare: {len(jobs)} runs ({sum(j.level == 'fe' for j in jobs)} at the fe level, {params.workers} at a time)",
-          flush=True)
+    print(C.describe_plan(jobs, params.workers), flush=True)
     done = C.run_jobs(study, noses, ctxs, jobs, params.workers,
                       lambda i, n: print(f"compare: run {i}/{n} done", flush=True) if i == n or i % 10 == 0 else None)
     failed = [f"{j.level} {j.variant} {j.nose} {j.velocity:g} m/s: {e}" for j, e in C.base_failures(done)]
