@@ -330,17 +330,31 @@ def real_pieces_at(scene, profiles, velocity):
             for p in profiles for k in range(REAL["members"])]
 
 
+for _v, _meshes in CHAOS.get("meshes", {}).items():
+    if _v not in REAL_VELOCITIES or any(m not in FREE_PROFILES for m in _meshes) \
+            or _meshes != [m for m in FREE_PROFILES if m in _meshes]:
+        raise ValueError(f"fe_realisations.chaos.meshes.{_v}: {_meshes} is not allowed: a velocity of "
+                         f"fe_realisations.velocities {REAL_VELOCITIES} -> profiles of fe_erosion_free.profiles "
+                         f"{list(FREE_PROFILES)}, coarse to fine")
+
+
+def chaos_profiles(velocity):
+    """The meshes of the grid study at one velocity: fe_realisations.chaos.meshes where it names them, else every
+    profile of fe_erosion_free."""
+    return CHAOS.get("meshes", {}).get(str(velocity), list(FREE_PROFILES))
+
+
 # The erosion-free grid study with the chaos in its error model, one velocity at a time (a study resumes velocity by
-# velocity): every mesh of fe_erosion_free.profiles, the realisations' mean and standard deviation per cell, the
+# velocity): the meshes of chaos_profiles, the realisations' mean and standard deviation per cell, the
 # mean against element size with the chaos as its error.
 use rule fe_fig12 as fe_erosion_free_chaos with:
     input: **task("tasks.fe_chaos"), reference=config["reference"],
-           pieces=lambda w: [p for p in real_pieces_at(CHAOS["scene"], FREE_PROFILES, w.velocity) if not Path(p).exists()],
+           pieces=lambda w: [p for p in real_pieces_at(CHAOS["scene"], chaos_profiles(w.velocity), w.velocity) if not Path(p).exists()],
     output: png=report("figures/fe/erosion_free/chaos_v{velocity}.png", caption="../report/captions/fe_erosion_free_chaos.rst", category="Finite-element level"),
             csv="figures/fe/erosion_free/chaos_v{velocity}.csv", cells="figures/fe/erosion_free/chaos_v{velocity}_cells.csv",
             shots="figures/fe/erosion_free/chaos_v{velocity}_shots.csv",
     params: dpi=config["figures"]["dpi"], across=config["fe_erosion_free"]["profiles"],
-            pieces=lambda w: [study_input(p) for p in real_pieces_at(CHAOS["scene"], FREE_PROFILES, w.velocity)],
+            pieces=lambda w: [study_input(p) for p in real_pieces_at(CHAOS["scene"], chaos_profiles(w.velocity), w.velocity)],
             goals=CHAOS["goals"], noise_sigmas=CHAOS["noise_sigmas"], members=REAL["members"],
     wildcard_constraints: velocity="|".join(REAL_VELOCITIES),
     benchmark: "results/benchmarks/fe_erosion_free_chaos_v{velocity}.tsv"
