@@ -99,6 +99,12 @@ def test_scatter_beyond_the_chaos_is_no_limit_and_names_the_next_mesh():
     # wall time grows as n^3 in the synthetic shots: the next mesh costs 1.25^3 of the finest's
     assert r.cost_exponent == pytest.approx(3.0, rel=1e-9)
     assert r.next_wall_time_per_shot_s == pytest.approx(20.0 ** 3 * 1200 / 500 * 1.25 ** 3, rel=1e-9)
+    # one shot paused for an hour (its wall time 30 times the others') moves no mesh's median, so not the cost
+    slow = shots[["elements_across", "wall_time_s", "velocity_ms"]].copy()
+    slow.loc[slow.index[slow.elements_across == slow.elements_across.max()][0], "wall_time_s"] *= 30.0
+    again = chaos.chaos_rows(cells, {}, GOALS, 2.0, slow, 3)
+    assert again.next_wall_time_per_shot_s.to_list() == pytest.approx(rows.next_wall_time_per_shot_s.to_list(), rel=1e-9,
+                                                                       nan_ok=True)
 
 
 def test_a_realisation_given_twice_is_refused():

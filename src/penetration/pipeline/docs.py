@@ -751,7 +751,15 @@ def erosion_free_chaos(read) -> str:
             continue
         shots = _rows_if_any(read, f"figures/fe/erosion_free/chaos_v{v:g}_shots.csv")
         wall = sum(x for x in (_num(r["wall_time_s"]) for r in shots) if x == x)
-        cost.append(f"{len(shots)} shots at {v:g} m/s, {wall / 3600:.1f} h")
+        by_mesh = {}
+        for r in shots:
+            if _num(r["wall_time_s"]) == _num(r["wall_time_s"]):
+                by_mesh.setdefault(r["elements_across"], []).append(_num(r["wall_time_s"]))
+        robust = sum(statistics.median(t) * len(t) for t in by_mesh.values())
+        across = sorted(float(a) for a in by_mesh)
+        cost.append(f"{len(shots)} shots at {v:g} m/s on {len(across)} meshes ({across[0]:g}-{across[-1]:g} across), "
+                    f"{wall / 3600:.1f} h (each mesh's median shot times its shots: "
+                    f"{robust / 3600:.1f} h)")
         for r in rows:
             if _num(r.get("estimate", "")) != _num(r.get("estimate", "")):
                 lines.append(f"| {float(r['velocity_ms']):g} | {r['quantity']} | — | — | — | — | — | {r['status']} | — |")
@@ -763,7 +771,8 @@ def erosion_free_chaos(read) -> str:
                          f"{'yes' if r['fit_holds'] == 'True' else 'no'} ({_num(r['fit_p']):.2f}) | "
                          f"{_num(r['estimate']):.3f} ± {_num(r['uncertainty']):.3f} | {_num(r['paper']):.3f} | "
                          f"{r['status']} | {nxt} |")
-    tail = ("\nJob time (2 cores, wall): " + "; ".join(cost) + "." if cost else "")
+    tail = ("\nJob time (2 cores, wall; a shot's wall time includes any pause of its job): " + "; ".join(cost) + "."
+            if cost else "")
     tail += ("\nNot yet run: " + ", ".join(f"{v} (`snakemake -c2 figures/fe/erosion_free/chaos_v{v.split()[0]}.csv` "
                                            "resumes its pieces under `figures/fe/realisations/`)" for v in missing)
              + ".\n" if missing else "\n")

@@ -214,9 +214,10 @@ def chaos_rows(cells: pd.DataFrame, paper: dict, goals: dict, sigmas: float, cos
 
 def next_mesh(cost: pd.DataFrame, velocity, members=None) -> dict:
     """The next mesh (REFINE times finer than the finest) and its cost: wall time per shot extrapolated along the
-    power law of the measured wall times against elements across (this velocity's shots), times the shots a cell
-    needs (three noses x ``members``)."""
-    c = cost[cost.velocity_ms == velocity].groupby("elements_across").wall_time_s.mean()
+    power law of the measured wall times against elements across (this velocity's shots, the median per mesh: a shot
+    paused or slowed by a neighbouring job would move a mean), times the shots a cell needs (three noses x
+    ``members``)."""
+    c = cost[cost.velocity_ms == velocity].groupby("elements_across").wall_time_s.median()
     n = c.index.to_numpy(float)
     t = c.to_numpy(float)
     if n.size < 2:
