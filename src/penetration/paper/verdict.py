@@ -12,8 +12,8 @@ Models (their sources, all outputs of the pipeline):
 - the eroding FE target at zero element size (figures/fe/contrast_extrapolation.csv: a line through many meshes each
   calibrated on DO1, its interval) with the changes the unstated inputs make at the default mesh
   (figures/fe/unstated_inputs.csv: nose friction, the paper's failure strain as stated);
-- the erosion-free FE target at zero element size (figures/fe/erosion_free/chaos.csv: realisations on five meshes,
-  Table 1's HJC as stated) with the changes nose friction makes at its coarsest mesh; a resolved change of the
+- the erosion-free FE target at zero element size (figures/fe/erosion_free/chaos_v*.csv: realisations on the meshes
+  of fe_realisations.chaos, Table 1's HJC as stated) with the changes nose friction makes at its coarsest mesh; a resolved change of the
   target's own numerical control (the lip's ejection halved or doubled) joins its uncertainty.
 
 An unstated input "reaches" the paper's value when the paper's value lies between the model's value and the value
