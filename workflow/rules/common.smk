@@ -72,3 +72,9 @@ def record_inputs(module, record, **runs):
             **{name: while_missing(f) for name, f in runs.items()}}
 
 
+
+
+def chaos_study():
+    """The erosion-free grid study with the chaos in its error model, as the paper's rules read it: its committed
+    output per velocity of fe_realisations (study_input; a velocity not yet run is "missing" and left out)."""
+    return [study_input(f"figures/fe/erosion_free/chaos_v{v:g}.csv") for v in config["fe_realisations"]["velocities"]]

@@ -31,7 +31,7 @@ rule verdict:
     output: csv="figures/verdict.csv", md="figures/verdict.md",
     params: sensitivity=study_input("figures/cavity_table3_sensitivity.csv"),
             eroding=study_input("figures/fe/contrast_extrapolation.csv"),
-            chaos=[study_input(f"figures/fe/erosion_free/chaos_v{v:g}.csv") for v in config["fe_realisations"]["velocities"]],
+            chaos=chaos_study(),
             unstated=[study_input(f"figures/fe/unstated_{t}_v{v:g}.csv") for t in config["fe_realisations"]["unstated"]
                       for v in config["fe_realisations"]["velocities"]],
             provenance=config["verdict"]["provenance"], free_velocities=config["fe_realisations"]["velocities"],

@@ -114,7 +114,7 @@ use rule accuracy_trajectory as nose_contrasts with:
     output: png=report("figures/nose_contrasts.png", caption="../report/captions/nose_contrasts.rst", category="Conclusions"), csv="figures/nose_contrasts.csv", table="figures/nose_contrasts_table.csv",
     params: dpi=config["figures"]["dpi"],
             band=study_input("figures/fe/contrast_band.csv"), limit=study_input("figures/fe/contrast_extrapolation.csv"),
-            free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
+            free=chaos_study(),
     benchmark: "results/benchmarks/nose_contrasts.tsv"
     log: "results/logs/nose_contrasts.log",
 

@@ -23,9 +23,8 @@ rule diff:
         contrast_table="figures/nose_contrasts_table.csv",
         verdict="figures/verdict.csv",
     output: diff="figures/diff.csv", summary="figures/diff_summary.md",
-    params: erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
+    params: erosion_free=chaos_study(),
             erosion_free_calibrated=study_input("figures/fe/erosion_free/calibrated.csv"),
-            eroding=study_input("figures/fe/contrast_extrapolation.csv"),
             # DO1 predicted with and without the scale effect, per level whose study has run (rule scale_validation)
             scale_do1={level: study_input(f"figures/scale/do1_{level}.csv") for level in ("analytic", "cavity", "fe")},
     threads: 1
@@ -40,12 +39,11 @@ use rule diff as claims with:
     input: **task("tasks.reference"), reference=config["reference"], contrasts="figures/nose_contrasts_table.csv",
            diff="figures/diff.csv", fe_diff="figures/fe/{profile}/diff.csv",
            fe_calibration="figures/fe/{profile}/calibration_fe_do1.csv",
-           cavity_calibration="figures/calibration_cavity_do1.csv",
+           cavity_calibration="figures/calibration_cavity_do1.csv", verdict="figures/verdict.csv",
     output: csv="figures/fe/{profile}/claims.csv",
     params: band=study_input("figures/fe/contrast_band.csv"),
             extrapolation=study_input("figures/fe/contrast_extrapolation.csv"),
             validation=lambda w: study_input(f"figures/fe/{w.profile}/validation_levels_summary.csv"),
-            erosion_free=study_input("figures/fe/erosion_free/convergence_holes.csv"),
     benchmark: "results/benchmarks/claims_{profile}.tsv"
     log: "results/logs/claims_{profile}.log",
 

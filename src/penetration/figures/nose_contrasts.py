@@ -4,7 +4,7 @@ from __future__ import annotations
 import pandas as pd
 
 from ..paper.reference import load_reference
-from ..pipeline.io import committed_study, task, write_csv
+from ..pipeline.io import committed_studies, committed_study, task, write_csv
 from .common import PAPER_STYLE, figure, save
 
 PANELS = ("DO/CRH 4.5", "DO/CRH 3", "CRH 4.5/CRH 3")
@@ -54,27 +54,19 @@ def _fe(ax, name, band, limit):
 
 
 def _free(ax, name, free):
-    """The erosion-free FE target on a ratio panel (a study): the contrast at zero element size and zero pilot hole
-    with its band (the larger of the holes' and the meshes' GCI)."""
-    z = free[(free.quantity == "depth_ratio") & (free.case == name)]
-    found = z.limit_found.astype(str) == "True" if "limit_found" in z else pd.Series(True, index=z.index)
-    a = z[found]
-    if len(a):
-        ax.errorbar(a.velocity_ms, a.at_zero_hole, yerr=a.uncertainty, fmt="D", ms=4, color=FREE_COLOR, capsize=2, lw=1,
-                    label="fe, erosion-free target: at zero element size and zero pilot hole, GCI band (a study)")
-    b = z[~found]
-    if len(b):   # no limit under refinement: every mesh's and hole's value, their range and median (not an interval)
-        ax.errorbar(b.velocity_ms - 15, b.values_median, yerr=[b.values_median - b.values_min, b.values_max - b.values_median],
-                    fmt="D", ms=4, mfc="white", color=FREE_COLOR, capsize=2, lw=1,
-                    label=f"fe, erosion-free target: no limit; range of the {_count(free)} values over its "
-                          "meshes and pilot holes, median (a study)")
-
-
-def _count(free) -> str:
-    """How many values the ranges of the contrasts without a limit span: one number, or the least and most."""
-    values = free.loc[(free.quantity == "depth_ratio") & (free.limit_found.astype(str) != "True"), "values"]
-    lo, hi = int(values.min()), int(values.max())
-    return f"{lo}" if lo == hi else f"{lo}-{hi}"
+    """The erosion-free FE target on a ratio panel (a study, figures/fe/erosion_free/chaos_v*.csv): the contrast at
+    zero element size +- U, filled where the study's line holds the means within their chaos, open where it does not
+    (no limit: not an interval)."""
+    if free is None:
+        return
+    z = free[(free.kind == "contrast") & (free.quantity == name) & free.estimate.notna()]
+    holds = z.fit_holds.astype(str) == "True"
+    for pick, style, label in ((holds, {}, "at zero element size +- U (realisations on several meshes; a study)"),
+                               (~holds, {"mfc": "white"}, "no limit: the line at zero size +- U does not hold the "
+                                                          "means (a study)")):
+        if pick.any():
+            ax.errorbar(z.velocity_ms[pick] - 30, z.estimate[pick], yerr=z.uncertainty[pick], fmt="D", ms=4,
+                        color=FREE_COLOR, capsize=2, lw=1, label=f"fe, erosion-free target: {label}", **style)
 
 
 @task
@@ -86,7 +78,7 @@ def nose_contrasts(inputs, outputs, params):
     fig, axes = figure(4, 4.0, 4.0)
     fig.subplots_adjust(wspace=0.3)
     t3 = data[data.source == "table3"]
-    band, limit, free = committed_study(params.band), committed_study(params.limit), committed_study(params.free)
+    band, limit, free = committed_study(params.band), committed_study(params.limit), committed_studies(params.free)
     for ax, name in zip(axes, PANELS):
         d = data[data.contrast == name]
         for (level, variant), style in LINES.items():
@@ -122,7 +114,11 @@ def nose_contrasts(inputs, outputs, params):
         ax.plot(g.velocity, g.gain_m, **dict(PAPER_STYLE, marker=marker, color="tab:gray", markersize=5),
                 label=f"paper, Table 3 simulation: {contrast}")
     ax.set(xlabel="striking velocity (m/s)", ylabel="depth gain of the double ogive (m)", title="gains in metres")
-    handles, labels = axes[0].get_legend_handles_labels()
+    legend = {}   # every ratio panel's entries, once each (a marker may appear on one panel only)
+    for ax in axes[:3]:
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            legend.setdefault(label, h)
+    handles, labels = list(legend.values()), list(legend)
     fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3, fontsize=7)
     axes[3].legend(fontsize=6, loc="upper left")
     fig.suptitle("Nose-shape contrasts: the paper's conclusions at every model level (solid lines: Fig 15 sweep)")

@@ -17,6 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..levels import LEVELS
+from .diff import above_one
+from .verdict import FREE
 
 GOAL_POINTS = 2  # a depth ratio within 2 points of the paper's simulated one: the criterion of the conclusions
 VALIDATION_GOAL = 0.10  # a level predicts well when its median depth error is within 10 % (the summary's within_10pct)
@@ -32,7 +34,7 @@ class Evidence:
     """What the claims are judged on (frames as read from the outputs): the paper's values (reference CSV, by id),
     the nose contrasts of every level, the diff and the FE diff, the eroding FE contrasts' bands and extrapolation to
     zero element size (None: not built), each level's out-of-sample validation (its primary rows), the cavity and FE
-    DO1 calibrations, the erosion-free study's contrasts at zero hole."""
+    DO1 calibrations, the verdict table (the erosion-free target's contrasts at zero element size)."""
     paper: object            # the reference CSV indexed by id (value, tol, case)
     contrasts: object        # figures/nose_contrasts_table.csv
     diff: object             # figures/diff.csv
@@ -42,7 +44,7 @@ class Evidence:
     validation: object       # figures/fe/{profile}/validation_levels_summary.csv
     cavity_scale: float      # the cavity level's DO1 strength scale
     fe_calibration: object   # figures/fe/{profile}/calibration_fe_do1.csv, its one row
-    erosion_free: object     # figures/fe/erosion_free/convergence_holes.csv
+    erosion_free: object     # figures/verdict.csv (its erosion-free rows are read)
 
 
 def pct(ratio):
@@ -198,18 +200,18 @@ def claims(ev):
 
 def contrast_ranking(rows):
     """The paper's ranking (the ratio above 1) of one contrast over its velocities on the erosion-free target, from
-    the study's verdict at each velocity (its ``verdict`` column: on the limit at zero size and hole, else on the
-    holes' least-squares hull; studies.grid.ranking_verdict): holds or fails where every velocity's does, else
-    undecided. Returns (the word, the phrase the report states: on which basis, and where no limit decides, the side
-    of 1 of every mesh's and hole's value)."""
-    words, limits = set(rows.verdict), all(rows.verdict_basis == "limit")
-    word = words.pop() if len(words) == 1 and "undecided" not in words else "undecided"
-    if limits:
-        return word, word if word != "undecided" else "is undecided"
-    if word != "undecided":
-        return word, f"{word} at every hole run, on the least-squares intervals of the meshes (no limit under refinement)"
-    sides = set(rows.side_of_1)
-    return word, f"is undecided without a limit ({sides.pop() if len(sides) == 1 else 'on both sides of 1'})"
+    the verdict table's erosion-free rows (value +- uncertainty at zero element size, one row per velocity the study
+    runs; diff.above_one at each): holds or fails where every velocity's does, else undecided. Returns (the word, the
+    phrase the report states: each velocity's value +- uncertainty, that the study found no limit where it did not,
+    pending where it has not run)."""
+    words, parts = set(), []
+    for _, r in rows.sort_values("velocity_ms").iterrows():
+        value, u, limit = float(r.value), float(r.uncertainty), str(r.limit) == "True"
+        words.add(above_one(value, u, limit))
+        parts.append(f"{float(r.velocity_ms):g} m/s " + (f"{value:.3f} ± {u:.3f}" + ("" if limit else " (no limit)")
+                                                         if value == value else "pending"))
+    word = words.pop() if len(words) == 1 else "undecided"
+    return word, f"{word if word != 'undecided' else 'is undecided'} ({'; '.join(parts)} at zero element size)"
 
 
 def claim_rows(ev):
@@ -218,8 +220,8 @@ def claim_rows(ev):
     rows = [{"claim_id": cid, "claim": claim, "level": level,
              **dict(zip(("verdict", "evidence", "value"), judge(ev, level)))}
             for cid, claim, judge in claims(ev) for level in LEVELS]
-    ratios = ev.erosion_free[ev.erosion_free.quantity == "depth_ratio"]
-    for contrast, g in ratios.groupby("case", sort=False):
+    free = ev.erosion_free
+    for contrast, g in free[free.model == FREE].groupby("contrast", sort=False):
         word, phrase = contrast_ranking(g)
         rows.append({"claim_id": f"ranking {contrast}", "claim": f"{contrast} above 1 (the paper's ranking)",
                      "level": "erosion_free", "verdict": word, "evidence": phrase, "value": NAN})

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import collections
 import itertools
-import math
 from dataclasses import dataclass
 
 from scipy.interpolate import PchipInterpolator
 
+from ..studies import chaos
 from .reference import TABLE3_NOSES, UNITS, VELOCITIES, Ref
 
 COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
@@ -551,57 +551,39 @@ def contrast_rows(refs, contrasts):
 
 
 def _flag(value) -> bool:
-    """A boolean of the erosion-free study's rows, read alike from its CSV (text) and from Python values."""
+    """A boolean of a study's rows, read alike from its CSV (text) and from Python values."""
     return str(value) == "True"
 
 
-def _limit_found(r) -> bool:
-    """Whether a zero-hole row of the erosion-free study has a limit (a finite extrapolation and band)."""
-    return _flag(r.get("limit_found", True)) and math.isfinite(float(r["uncertainty"]))
+def _chaos_basis(r) -> str:
+    """How the erosion-free study reached one row (studies.chaos.chaos_rows): its meshes and realisations, and
+    whether its line holds the means."""
+    est, _, limit = chaos.reading(r)
+    if est != est:
+        return f"no estimate: {r['status']}"
+    return (f"a first-order line through {int(float(r['meshes']))} meshes ({int(float(r['realisations_min']))}+ "
+            f"realisations each; pilot hole 1/8)" + ("" if limit else f": {r['status']}"))
 
 
-def _hull(r):
-    """The hull of the least-squares intervals (finest value +- U) over the holes of a row without a limit, (low,
-    high), or None where a hole has none (a CSV's missing value comes as an empty string)."""
-    low, high = (float(r.get(k) or "nan") for k in ("ls_low", "ls_high"))
-    return (low, high) if math.isfinite(low) and math.isfinite(high) else None
-
-
-def _spread(r, fmt) -> str:
-    """The values of every mesh and hole of a row without a limit: their range and median (not an interval)."""
-    return (f"{int(r['values'])} values over the meshes and pilot holes {fmt.format(float(r['values_min']))} to "
-            f"{fmt.format(float(r['values_max']))} (median {fmt.format(float(r['values_median']))})")
-
-
-def erosion_free_depth_rows(refs, limits, calibrated):
+def erosion_free_depth_rows(refs, chaos_rows, calibrated):
     """Table 3's depths on the erosion-free FE target (a study): with Table 1's HJC as stated, each depth at zero
-    element size and zero pilot hole (rows of figures/fe/erosion_free/convergence_holes.csv) judged on the band of
-    its uncertainty against the paper's tolerance (nothing calibrated: an agreement is a reproduction); and with one
-    strength scale calibrated on DO1 at the finest mesh and smallest hole (rows of
+    element size (rows of figures/fe/erosion_free/chaos_v*.csv, kind depth: the realisations' means on the study's
+    meshes, at pilot hole 1/8) judged on estimate +- U against the paper's tolerance (nothing calibrated: an agreement
+    is a reproduction; without a limit, undecided); and with one strength scale calibrated on DO1 at one mesh (rows of
     figures/fe/erosion_free/calibrated.csv; agreement there is after calibration)."""
     rows = []
-    for r in limits:
-        if r["quantity"] != "depth_m":
+    for r in chaos_rows:
+        if r["kind"] != "depth":
             continue
-        v, nose = int(r["velocity_ms"]), r["case"]
+        v, nose = int(float(r["velocity_ms"])), r["quantity"]
         ref = refs[f"table3.sim.{v}.{nose}"]
-        if not _limit_found(r):
-            ours, hull = float(r["values_median"]), _hull(r)
-            ls = (f"least-squares intervals of the holes' finest depths {hull[0]:.3f} to {hull[1]:.3f} m (at the holes "
-                  f"run); " if hull else "")
-            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f} m')}; {ls}Table 1 "
-                    f"HJC as stated; a study)")
-            status = (interval_status(ref.value, hull[0], hull[1], ref.tol * abs(ref.value), False) if hull
-                      else "undecided")
-            rows.append(Row(ref.item, ref.quantity + " on the erosion-free target", case, ref.value, ours,
-                            _rel(ref.value, ours), ref.tol, status))
-            continue
-        ours, band = float(r["at_zero_hole"]), float(r["uncertainty"])
-        case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: {ours:.3f} +- {band:.3f} m; "
+        est, u, limit = chaos.reading(r)
+        case = (f"{ref.case} (erosion-free FE at zero element size: {est:.3f} +- {u:.3f} m by {_chaos_basis(r)}; "
                 f"Table 1 HJC as stated; a study)")
-        rows.append(Row(ref.item, ref.quantity + " on the erosion-free target", case, ref.value, ours,
-                        _rel(ref.value, ours), ref.tol, interval_status(ref.value, ours - band, ours + band,
-                                                                        ref.tol * abs(ref.value), False)))
+        status = (interval_status(ref.value, est - u, est + u, ref.tol * abs(ref.value), False) if limit
+                  else "undecided")
+        rows.append(Row(ref.item, ref.quantity + " on the erosion-free target", case, ref.value, est,
+                        _rel(ref.value, est), ref.tol, status))
     for r in calibrated:
         v, nose = int(r["velocity_ms"]), r["nose"]
         ref = refs[f"table3.sim.{v}.{nose}"]
@@ -613,70 +595,33 @@ def erosion_free_depth_rows(refs, limits, calibrated):
     return rows
 
 
-def _beside(e, o) -> list:
-    """The other models' ratios set beside the erosion-free one: the eroding FE level at zero size (its interval),
-    the cavity level and Eq 9 with the stated S."""
-    beside = []
-    if e is not None:
-        beside.append(f"eroding FE at zero size {float(e['ratio_at_zero_size']):.3f} ({float(e['interval_low']):.3f}"
-                      f" to {float(e['interval_high']):.3f})")
-    if o is not None:
-        beside.append(f"cavity level {float(o['cavity_ratio']):.3f}; Eq 9 with the stated S "
-                      f"{float(o['analytic_stated_S_ratio']):.3f}")
-    return beside
+def above_one(value, u, limit) -> str:
+    """A contrast's ranking (its ratio above 1) from a value +- u: holds where the whole interval lies above 1, fails
+    where it lies below, undecided where it holds 1, where the value is not a limit or not finite."""
+    if not (limit and value == value and u == u):
+        return "undecided"
+    return "holds" if value - u > 1.0 else ("fails" if value + u < 1.0 else "undecided")
 
 
-# the diff's status of the study's verdict on a contrast's ranking (its `verdict` column, studies.grid.ranking_verdict)
+# the diff's status of a contrast's ranking on the erosion-free target (above_one)
 RANKING_STATUS = {"holds": "ordering", "fails": "deviates"}
 
 
-def erosion_free_rows(refs, limits, eroding, contrast_table):
-    """The verdict on the paper's nose contrasts from the erosion-free FE target (a study: Table 3's rows on meshes
-    refined by a constant ratio at pilot holes halved in turn, each contrast extrapolated to zero element size and
-    zero hole; rows of figures/fe/erosion_free/convergence_holes.csv), beside the eroding FE level at zero size
-    (figures/fe/contrast_extrapolation.csv), the cavity level and Eq 9 (figures/nose_contrasts_table.csv).
-
-    Per contrast and velocity two rows: the increment against the paper's simulated one, judged on the band of the
-    larger of the hole's and the meshes' GCI by interval_status (goal: 2 points; nothing is calibrated, so an
-    agreement is a reproduction); and the paper's ranking (the ratio above 1): the study's verdict (its `verdict`
-    column: on the band where there is a limit, else on the holes' least-squares hull), ordering where it holds,
-    deviates where it fails, undecided otherwise."""
+def erosion_free_rows(refs, free):
+    """The paper's ranking of each nose contrast (the ratio above 1) on the erosion-free FE target, per velocity the
+    study runs: the verdict table's erosion-free rows (``free``: records of figures/verdict.csv for that model; value
+    +- uncertainty at zero element size, the chaos, the mesh and a resolved numerical control's change in it),
+    ordering where the whole interval lies above 1, deviates where it lies below, undecided otherwise and where the
+    study found no limit. The contrast itself against the paper's is the verdict's own row in the diff."""
     rows = []
-    others = {(r["contrast"], int(r["velocity"])): r for r in contrast_table}
-    erode = {(r["contrast"], int(r["velocity_ms"])): r for r in eroding}
-    for r in limits:
-        if r["quantity"] != "depth_ratio":
-            continue
-        name, v = r["case"], int(r["velocity_ms"])
+    for r in free:
+        name, v = r["contrast"], int(float(r["velocity_ms"]))
         prefix, nose = FE_INCREMENTS[name]
         ref = refs[f"{prefix}.{v}.{nose}"]
-        beside = _beside(erode.get((name, v)), others.get((name, v)))
-        if not _limit_found(r):
-            # no limit: judged on the hull of the holes' least-squares intervals, where every hole has one (a bound
-            # at the holes run, not at zero hole), else undecided
-            lo, med, hi = (float(r[k]) for k in ("values_min", "values_median", "values_max"))
-            hull = _hull(r)
-            ls = (f"least-squares intervals of the holes' finest values {hull[0]:.3f} to {hull[1]:.3f} (at the holes "
-                  f"run); " if hull else "")
-            case = (f"{ref.case} (erosion-free FE: no limit under refinement; {_spread(r, '{:.3f}')} as ratios; {ls}"
-                    f"{'; '.join(beside + [''])}Table 1 HJC; a study)")
-            status = (interval_status(ref.value, 100 * (hull[0] - 1), 100 * (hull[1] - 1), 2.0, False) if hull
-                      else "undecided")
-            rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value,
-                            100 * (med - 1), _rel(ref.value, 100 * (med - 1)), 2.0 / abs(ref.value), status))
-            rows.append(Row(ref.item, f"{name} above 1 (the paper's ranking) on the erosion-free target",
-                            f"{v} m/s (no limit; ratios {lo:.3f} to {hi:.3f}: {r['side_of_1']}; {ls}a study)", 1.0,
-                            med, _rel(1.0, med), 0.0, RANKING_STATUS.get(r["verdict"], "undecided")))
-            continue
-        ratio, band = float(r["at_zero_hole"]), float(r["uncertainty"])
-        ours, lo, hi = 100 * (ratio - 1), 100 * (ratio - band - 1), 100 * (ratio + band - 1)
-        case = (f"{ref.case} (erosion-free FE at zero element size and zero pilot hole: ratio {ratio:.3f} +- "
-                f"{band:.3f}; meshes {'asymptotic' if _flag(r['mesh_status_all_asymptotic']) else 'not all asymptotic'}"
-                f"{' (a shot stopped: refined on the meshes before it)' if _flag(r.get('meshes_stopped')) else ''}; "
-                f"holes {r['hole_status']}; {'; '.join(beside)}; Table 1 HJC; a study)")
-        rows.append(Row(ref.item, ref.quantity + " on the erosion-free target (within 2 points)", case, ref.value, ours,
-                        _rel(ref.value, ours), 2.0 / abs(ref.value), interval_status(ref.value, lo, hi, 2.0, False)))
+        value, u, limit = float(r["value"]), float(r["uncertainty"]), str(r["limit"]) == "True"
+        basis = str(r["uncertainty_basis"]).replace(",", ";")
         rows.append(Row(ref.item, f"{name} above 1 (the paper's ranking) on the erosion-free target",
-                        f"{v} m/s (ratio {ratio:.3f} +- {band:.3f}; a study)", 1.0, ratio, _rel(1.0, ratio), band,
-                        RANKING_STATUS.get(r["verdict"], "undecided")))
+                        f"{v} m/s ({f'ratio {value:.3f} +- {u:.3f}: ' if value == value else ''}{basis}; the verdict "
+                        "table; a study)", 1.0, value,
+                        _rel(1.0, value), u, RANKING_STATUS.get(above_one(value, u, limit), "undecided")))
     return rows

@@ -144,6 +144,14 @@ def committed_study(spec) -> pd.DataFrame:
     return pd.read_csv(path)
 
 
+def committed_studies(specs) -> pd.DataFrame | None:
+    """The committed pieces of a study built so far (``specs``: study_input records, one per velocity or target, in
+    order), their rows concatenated; None where none is built (a missing piece is left out: the study comes in
+    pieces)."""
+    frames = [committed_study(s) for s in specs if s["sha256"] != "missing"]
+    return pd.concat(frames, ignore_index=True) if frames else None
+
+
 def load_json(path):
     return json.loads(Path(path).read_text())
 

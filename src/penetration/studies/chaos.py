@@ -230,6 +230,15 @@ def next_mesh(cost: pd.DataFrame, velocity, members=None) -> dict:
             "next_cell_hours": per_shot * shots / 3600.0}
 
 
+def reading(r) -> tuple:
+    """One row of ``chaos_rows`` (a dict or a CSV record, whose booleans come as text) read for a verdict: (estimate,
+    U, limit), limit false where the study has no estimate (fewer than three meshes, no chaos measured) or where its
+    first-order line does not hold the means within their chaos (then estimate +- U bounds nothing)."""
+    est = float(r.get("estimate", math.nan) or math.nan)
+    u = float(r.get("uncertainty", math.nan) or math.nan)
+    return est, u, bool(math.isfinite(est) and math.isfinite(u) and str(r.get("fit_holds")) == "True")
+
+
 def unstated_rows(cells: pd.DataFrame, baselines: dict, settings: dict, paper: dict) -> pd.DataFrame:
     """Per target, contrast and velocity: each scene's contrast (realisations' mean +- 2 s.e.; realisations: the members
     whose two shots both came to rest, of runs: the members run) and its change from the

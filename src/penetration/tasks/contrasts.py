@@ -13,7 +13,7 @@ import pandas as pd
 
 from ..analytic.trajectory import assemble, integrate
 from ..nose.nstar import nstar
-from ..pipeline.io import task, write_csv, write_text
+from ..pipeline.io import committed_studies, committed_study, task, write_csv, write_text
 from .common import PLAIN, scene_from_inputs
 
 # (name, numerator nose, denominator nose): the paper's claims and the CRH contrast
@@ -82,17 +82,10 @@ def verdict(inputs, outputs, params):
     chaos and unstated-input studies come one velocity and target at a time)."""
     from ..paper.verdict import verdict_rows
 
-    def study(p):
-        return None if p["sha256"] == "missing" else pd.read_csv(p["path"])
-
-    def studies(ps):   # the pieces of a study built so far (one per velocity or target), None if none is
-        frames = [f for f in (study(p) for p in ps) if f is not None]
-        return pd.concat(frames, ignore_index=True) if frames else None
-    sensitivity = study(params.sensitivity)
-    if sensitivity is None:
-        raise FileNotFoundError(f"{params.sensitivity['path']} is missing: build it with `snakemake -c2 studies`")
-    table = verdict_rows(pd.read_csv(inputs.table), sensitivity, study(params.eroding), studies(params.chaos),
-                         studies(params.unstated), params.provenance, tuple(float(v) for v in params.free_velocities))
+    sensitivity = committed_study(params.sensitivity)   # a missing one says how to build it
+    table = verdict_rows(pd.read_csv(inputs.table), sensitivity, committed_studies([params.eroding]),
+                         committed_studies(params.chaos), committed_studies(params.unstated), params.provenance,
+                         tuple(float(v) for v in params.free_velocities))
     write_csv(table, outputs.csv)
     # the same table and paragraph as the README's generated block, for the report (which imports no package code)
     from ..pipeline.docs import verdict as verdict_block

@@ -30,8 +30,8 @@ import numpy as np
 import pandas as pd
 
 from ..paper import claims as claim_rows, diff as diff_rows, reference
-from ..paper.verdict import verdict_diff_rows
-from ..pipeline.io import committed_study, load_json, task, write_csv, write_text
+from ..paper.verdict import FREE, verdict_diff_rows
+from ..pipeline.io import committed_studies, committed_study, load_json, task, write_csv, write_text
 
 
 def _bands_dict(path, noses_table):
@@ -87,15 +87,16 @@ def diff(inputs, outputs, params):
     by = table.set_index("name")
     ours = {f"nstar.{n}": float(by.loc[n, "nstar"]) for n in by.index}
     ours.update({f"mass.{n}": float(by.loc[n, "mass"]) for n in by.index})
+    verdict = pd.read_csv(inputs.verdict)
+    chaos = committed_studies(params.erosion_free)   # the erosion-free grid study, velocity by velocity
+    free = [] if chaos is None else chaos.to_dict("records")
     rows = (diff_rows.table1_rows(refs) + diff_rows.table3_rows(refs) + diff_rows.table4_rows(refs, ours)
             + diff_rows.fig03_rows(refs, _bands_dict(inputs.bands, table)) + diff_rows.fig05_rows(refs, ours)
             + _model_rows(refs, inputs)
-            + diff_rows.erosion_free_rows(refs, committed_study(params.erosion_free).to_dict("records"),
-                                          committed_study(params.eroding).to_dict("records"),
-                                          pd.read_csv(inputs.contrast_table).to_dict("records"))
-            + diff_rows.erosion_free_depth_rows(refs, committed_study(params.erosion_free).to_dict("records"),
+            + diff_rows.erosion_free_rows(refs, verdict[verdict.model == FREE].to_dict("records"))
+            + diff_rows.erosion_free_depth_rows(refs, free,
                                                 committed_study(params.erosion_free_calibrated).to_dict("records"))
-            + verdict_diff_rows(pd.read_csv(inputs.verdict))
+            + verdict_diff_rows(verdict)
             + diff_rows.scale_do1_rows(refs, {level: committed_study(spec).to_dict("records")
                                               for level, spec in params.scale_do1.items() if spec["sha256"] != "missing"}))
     frame = pd.DataFrame([dataclasses.asdict(r) for r in rows], columns=diff_rows.COLUMNS)
@@ -124,7 +125,7 @@ def claims(inputs, outputs, params):
         diff=pd.read_csv(inputs.diff), fe_diff=pd.read_csv(inputs.fe_diff), band=committed_study(params.band),
         extrapolation=committed_study(params.extrapolation), validation=committed_study(params.validation),
         cavity_scale=float(cavity_calibration.value), fe_calibration=fe_calibration,
-        erosion_free=committed_study(params.erosion_free))
+        erosion_free=pd.read_csv(inputs.verdict))
     write_csv(pd.DataFrame(claim_rows.claim_rows(evidence), columns=claim_rows.COLUMNS), outputs.csv)
 
 
