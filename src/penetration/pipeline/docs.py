@@ -801,9 +801,9 @@ def erosion_free_chaos(read) -> str:
                 by_mesh.setdefault(r["elements_across"], []).append(_num(r["wall_time_s"]))
         robust = sum(statistics.median(t) * len(t) for t in by_mesh.values())
         across = sorted(float(a) for a in by_mesh)
-        cost.append(f"{len(shots)} shots at {v:g} m/s on {len(across)} meshes ({across[0]:g}-{across[-1]:g} across), "
-                    f"{wall / 3600:.1f} h (each mesh's median shot times its shots: "
-                    f"{robust / 3600:.1f} h)")
+        if across:
+            cost.append(f"{len(shots)} shots at {v:g} m/s on {len(across)} meshes ({across[0]:g}-{across[-1]:g} "
+                        f"across), {wall / 3600:.1f} h (each mesh's median shot times its shots: {robust / 3600:.1f} h)")
         for r in rows:
             if _num(r.get("estimate", "")) != _num(r.get("estimate", "")):
                 lines.append(f"| {float(r['velocity_ms']):g} | {r['quantity']} | — | — | — | — | — | {r['status']} | — |")
