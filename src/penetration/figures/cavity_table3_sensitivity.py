@@ -25,7 +25,8 @@ def cavity_table3_sensitivity(inputs, outputs, params):
         shift = (k - (len(variants) - 1) / 2) * 0.09
         xs = [x[(v, n)] + shift for v, n in zip(g.velocity, g.nose)]
         inside = (g.rel_dev_pct.abs() <= params.goal_pct).sum()
-        ax.plot(xs, g.rel_dev_pct, "o", ms=4,
+        # ten colours, then the same colours with another marker: every variant its own symbol
+        ax.plot(xs, g.rel_dev_pct, "os^D"[k // 10 % 4], ms=4, color=f"C{k % 10}",
                 label=f"{label}: {g.calibrated.iloc[0]} = {g.value.iloc[0]:.3g} ({inside}/{len(g)} inside)")
     ax.set_xticks(range(len(labels)), labels, fontsize=7)
     ax.set(xlabel="striking velocity (m/s) and nose", ylabel="cavity level vs paper simulation (%)",
