@@ -158,3 +158,20 @@ def test_identical_realisations_and_too_few_meshes_say_so():
     assert set(few.status) == {"fewer than 3 meshes with a mean"}
     with pytest.raises(ValueError, match="goals has no goal for 1200"):
         _rows_of(pieces(), {"500": 0.02})
+
+
+def test_the_ejected_concrete_is_booked_per_cell_contrast_and_finest_mesh():
+    """Each nose's ejected mass per cell is its realisations' mean; a contrast's the mean of its two noses'; the study's
+    row the finest mesh's."""
+    p = pieces()
+    for piece in p:
+        for s in piece["shots"]:
+            s["ejected_mass_kg"] = {"double_ogive": 30.0, "crh45": 20.0, "crh3": 10.0}[s["nose"]] + piece["member"]
+    shots = chaos.shot_rows(p, ACROSS)
+    cells = chaos.cell_rows(shots, ("scene", "profile", "elements_across", "element_size_m", "velocity_ms"))
+    one = cells[(cells.profile == "m5") & (cells.velocity_ms == 500.0)].set_index("quantity")
+    assert one.ejected_mass_kg["double_ogive"] == pytest.approx(31.0) and one.ejected_mass_kg["crh3"] == pytest.approx(11.0)
+    assert one.ejected_mass_kg["DO/CRH 3"] == pytest.approx(21.0) and one.ejected_mass_kg["CRH 4.5/CRH 3"] == pytest.approx(16.0)
+    rows = chaos.chaos_rows(cells, {}, GOALS, 2.0)
+    r = rows[(rows.quantity == "DO/CRH 4.5") & (rows.velocity_ms == 1200.0)].iloc[0]
+    assert r.ejected_mass_finest_kg == pytest.approx(26.0) and r.wall_debris_mass_finest_kg == 0.0

@@ -46,6 +46,7 @@ CONFIDENCE = 0.95       # U: the Student-t interval of the line's value at zero 
 REFINE = 1.25           # the next mesh: this many times finer than the finest
 SAFETY_MONOTONE, SAFETY_OTHER = 1.25, 3.0
 
+MASSES = ("ejected_mass_kg", "crater_debris_mass_kg", "wall_debris_mass_kg")   # concrete taken out of the stress field
 SHOT_COLUMNS = ("depth_m", "status", "wall_time_s", "ejected_mass_kg", "crater_debris_mass_kg", "wall_debris_mass_kg",
                 "friction", "failure_strain")
 
@@ -85,27 +86,29 @@ def _depth_cell(d):
 def cell_rows(shots: pd.DataFrame, keys=("scene", "profile", "element_size_m", "velocity_ms")) -> pd.DataFrame:
     """Per cell (``keys``) each nose's depth and each contrast of CONTRASTS: realisations (at rest / run), mean,
     standard deviation of one realisation and standard error of the mean (a contrast's by propagation), the depth's
-    relative standard deviation in per cent and the ejected, crater and wall-debris mass (kg, mean)."""
+    relative standard deviation in per cent and the ejected, crater and wall-debris mass (kg, mean; a contrast's the
+    mean of its two noses')."""
     rows = []
     for key, g in shots.groupby(list(keys), sort=False):
         base = dict(zip(keys, key))
         if "elements_across" in g:
             base["elements_across"] = float(g.elements_across.iloc[0])
-        depth = {}
+        depth, mass = {}, {}
         for nose, d in g.groupby("nose", sort=False):
             n, runs, mean, sd, se = _depth_cell(d)
             depth[nose] = (mean, sd, se, n, runs)
+            mass[nose] = {k: d[k].mean() for k in MASSES}
             rows.append({**base, "quantity": nose, "kind": "depth", "realisations": n, "runs": runs, "mean": mean,
-                         "sd": sd, "se": se, "sd_pct": 100 * sd / mean, "ejected_mass_kg": d.ejected_mass_kg.mean(),
-                         "crater_debris_mass_kg": d.crater_debris_mass_kg.mean(),
-                         "wall_debris_mass_kg": d.wall_debris_mass_kg.mean(), "wall_time_s": d.wall_time_s.mean()})
+                         "sd": sd, "se": se, "sd_pct": 100 * sd / mean, **mass[nose],
+                         "wall_time_s": d.wall_time_s.mean()})
         for name, (num, den) in CONTRASTS.items():
             if num in depth and den in depth:
                 (ma, sa, ea, na, ra), (mb, sb, eb, nb, rb) = depth[num], depth[den]
                 c = ma / mb
                 rows.append({**base, "quantity": name, "kind": "contrast", "realisations": min(na, nb),
                              "runs": min(ra, rb), "mean": c, "sd": c * math.hypot(sa / ma, sb / mb),
-                             "se": c * math.hypot(ea / ma, eb / mb), "sd_pct": math.nan})
+                             "se": c * math.hypot(ea / ma, eb / mb), "sd_pct": math.nan,
+                             **{k: 0.5 * (mass[num][k] + mass[den][k]) for k in MASSES}})
     return pd.DataFrame(rows)
 
 
@@ -190,6 +193,7 @@ def chaos_rows(cells: pd.DataFrame, paper: dict, goals: dict, sigmas: float, cos
         fit_holds = bool(p_fit >= FIT_P_MIN) if np.isfinite(p_fit) else False
         within = bool(fit_holds and u <= goal * scale)
         row = {**base, "finest_mean": f[-1], "finest_se": se[-1], "sd_finest": float(g.sd.iloc[-1]),
+               **{f"{k.removesuffix('_kg')}_finest_kg": float(g[k].iloc[-1]) if k in g else math.nan for k in MASSES},
                "element_size_finest_m": h[-1], "zero_size": f0, "zero_size_se": se0, "slope_per_m": a, "slope_se_per_m": sea,
                "slope_resolved": bool(abs(a) > sigmas * sea), "sd_pooled": sd_pool, "sd_pooled_dof": dof_pool,
                "coverage_factor": k, "chi2": chi2, "dof": dof, "fit_p": p_fit,
@@ -263,7 +267,8 @@ def unstated_rows(cells: pd.DataFrame, baselines: dict, settings: dict, paper: d
                          "profile": r.profile, "element_size_m": r.element_size_m, "contrast": r.quantity,
                          "velocity_ms": r.velocity_ms, "realisations": r.realisations, "runs": r.runs,
                          "ratio": r["mean"],
-                         "ratio_se": r.se, "sd": r.sd, "change_points": 100 * change, "change_se_points": 100 * change_se,
+                         "ratio_se": r.se, "sd": r.sd, **{k: r.get(k, math.nan) for k in MASSES},
+                         "change_points": 100 * change, "change_se_points": 100 * change_se,
                          "change_resolved": bool(abs(change) > k * change_se) if change_se > 0 else False,
                          "change_t_factor": k if change_se > 0 else math.nan,
                          "paper_sim_ratio": p, "paper_within_2se": bool(abs(p - r["mean"]) <= COVERAGE * r.se)
