@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from scipy.interpolate import PchipInterpolator
 
-from ..studies import chaos
+from ..studies import chaos, grid
 from .reference import TABLE3_NOSES, UNITS, VELOCITIES, Ref
 
 COLUMNS = ("item", "quantity", "case", "paper", "ours", "rel_err", "tol", "status")
@@ -596,11 +596,9 @@ def erosion_free_depth_rows(refs, chaos_rows, calibrated):
 
 
 def above_one(value, u, limit) -> str:
-    """A contrast's ranking (its ratio above 1) from a value +- u: holds where the whole interval lies above 1, fails
-    where it lies below, undecided where it holds 1, where the value is not a limit or not finite."""
-    if not (limit and value == value and u == u):
-        return "undecided"
-    return "holds" if value - u > 1.0 else ("fails" if value + u < 1.0 else "undecided")
+    """A contrast's ranking (its ratio above 1) from a value +- u (studies.grid.ranking: holds, fails, or undecided
+    where the interval holds 1 or is not finite); undecided where the value is not a limit."""
+    return grid.ranking(value, u) if limit else "undecided"
 
 
 # the diff's status of a contrast's ranking on the erosion-free target (above_one)
