@@ -39,3 +39,13 @@ def test_the_next_mesh_cost_follows_a_power_law_of_the_elements_across():
     assert seconds == pytest.approx(3 * 2.0 * 25.0 ** 3, rel=1e-12)
     with pytest.raises(ValueError, match="elements_across"):
         next_mesh_cost(shots[:3])
+
+
+def test_the_studies_built_with_an_older_code_are_listed_and_only_they():
+    from penetration.pipeline.docs import built_with
+    studies = ("a:\n  what: first\n  outputs: [figures/a.csv]\n  built_with: the old solver\n"
+               "b:\n  what: second\n  outputs: [figures/b.csv]\n")
+    block = built_with(lambda path: studies)
+    assert block.startswith("1 of 2 studies") and "| `a` | first | the old solver |" in block and "`b`" not in block
+    current = built_with(lambda path: studies.replace("  built_with: the old solver\n", ""))
+    assert "current code" in current and "|" not in current

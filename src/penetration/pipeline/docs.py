@@ -835,7 +835,23 @@ def studies(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"verdict": verdict, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
+def built_with(read) -> str:
+    """The studies whose committed outputs come from an older code or model than the rebuild's (workflow/studies.yaml,
+    each study's `built_with`): what each asks and what its outputs were built with, until it is run again."""
+    import yaml
+
+    listed = yaml.safe_load(read("workflow/studies.yaml"))
+    old = {name: s for name, s in listed.items() if s.get("built_with")}
+    if not old:
+        return "Every study's committed outputs come from the current code and model (`workflow/studies.yaml`).\n"
+    lines = [f"{len(old)} of {len(listed)} studies' committed outputs come from an older code or model than the "
+             "rebuild's, until `snakemake -c2 studies` runs them again (`built_with` in `workflow/studies.yaml`):", "",
+             "| study | what it asks | built with |", "|---|---|---|"]
+    lines += [f"| `{name}` | {s['what']} | {' '.join(s['built_with'].split())} |" for name, s in old.items()]
+    return "\n".join(lines) + "\n"
+
+
+BLOCKS = {"verdict": verdict, "built_with": built_with, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
 
 
 def render(text: str, read) -> str:
