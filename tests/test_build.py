@@ -96,13 +96,26 @@ def test_a_job_ends_when_its_parent_is_killed(tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
 def test_killing_the_build_ends_snakemake_and_its_jobs(tmp_path, sig):
-    """SIGTERM is forwarded to Snakemake; SIGKILL cannot be, and Snakemake ends by its parent-death signal."""
-    (tmp_path / "Snakefile").write_text(textwrap.dedent("""
+    """SIGTERM is forwarded to Snakemake, once, and ends it by itself, before the SIGKILL that follows GRACE_S later
+    (a second SIGTERM stalled Snakemake's shutdown in most runs); SIGKILL cannot be forwarded, and Snakemake ends by
+    its parent-death signal."""
+    from penetration.build import GRACE_S
+    proc, job = _build_with_a_slow_job(tmp_path, "")
+    proc.send_signal(sig)
+    assert proc.wait(timeout=0.8 * GRACE_S if sig == signal.SIGTERM else 30) != 0
+    assert ends_within(job, 10.0), "the job outlived the build"
+    assert not (tmp_path / "out.txt").exists()
+
+
+def _build_with_a_slow_job(tmp_path, prefix):
+    """The build running a one-job workflow whose job (a shell started by ``prefix``) sleeps 60 s; (the build's
+    process, the job's pid) once the job runs."""
+    (tmp_path / "Snakefile").write_text(textwrap.dedent(f"""
         rule all:
             input: "out.txt"
         rule slow:
             output: "out.txt"
-            shell: "echo $$ > pid.txt; sleep 60; touch {output}"
+            shell: "{prefix}echo $$ > pid.txt; sleep 60; touch {{output}}"
     """))
     proc = subprocess.Popen([sys.executable, "-m", "penetration.build", "-c1"], cwd=tmp_path, env=ENV,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -111,8 +124,15 @@ def test_killing_the_build_ends_snakemake_and_its_jobs(tmp_path, sig):
         if pid_file.exists() and pid_file.read_text().strip():
             break
         time.sleep(0.05)
-    job = int(pid_file.read_text())
-    proc.send_signal(sig)
-    assert proc.wait(timeout=30) != 0
-    assert ends_within(job, 10.0), "the job outlived the build"
-    assert not (tmp_path / "out.txt").exists()
+    return proc, int(pid_file.read_text())
+
+
+@pytest.mark.slow
+def test_a_job_that_ignores_sigterm_is_killed_after_the_grace_period(tmp_path):
+    from penetration.build import GRACE_S
+    proc, job = _build_with_a_slow_job(tmp_path, "trap '' TERM; ")
+    t0 = time.monotonic()
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=GRACE_S + 20) != 0
+    assert ends_within(job, 5.0), "the job outlived the build"
+    assert time.monotonic() - t0 >= 0.9 * GRACE_S   # it ignored the SIGTERM: the SIGKILL ended it

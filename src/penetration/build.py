@@ -11,8 +11,9 @@ time of the jobs finished), so that it holds on a slower or busier machine and w
 with no record counts as the median job.
 
 Killing this process (SIGTERM, SIGINT, SIGHUP) ends Snakemake and its jobs: they run in a process group of their
-own, which is signalled as a whole; SIGKILL, which cannot be passed on, ends them too, through the group's leader
-(a child of this process that Linux signals when its parent dies). Snakemake's exit status is this command's.
+own, whose leader passes the signal on to the group as a whole, once, and the group is killed (SIGKILL) if any of it is
+still there GRACE_S seconds later; SIGKILL, which cannot be passed on, ends them too, through the group's leader (a child of
+this process that Linux signals when its parent dies). Snakemake's exit status is this command's.
 """
 from __future__ import annotations
 
@@ -21,11 +22,13 @@ import re
 import signal
 import subprocess
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 RECORDS = Path("figures/timing/pipeline_rules.csv")
+GRACE_S = 10.0   # s from a forwarded signal to the group's SIGKILL
 _STATS_ROW = re.compile(r"^(\w+)\s+(\d+)$")
 _JOB_START = re.compile(r"^(?:local)?rule (\w+):$")
 _JOBID = re.compile(r"^\s+jobid: (\d+)$")
@@ -171,11 +174,23 @@ def main(argv=None) -> int:
                             stderr=subprocess.STDOUT, text=True, bufsize=1, start_new_session=True,
                             env={**os.environ, PARENT_ENV: str(os.getpid())})
 
-    def forward(signum, _frame):
+    def kill_group():
         try:
-            os.killpg(proc.pid, signum)
+            os.killpg(proc.pid, signal.SIGKILL)
         except ProcessLookupError:
             pass
+
+    def forward(signum, _frame):
+        # to the group's leader, which signals the group once (Snakemake stalls in its shutdown when a second
+        # SIGTERM reaches it); the whole group if the leader is gone
+        try:
+            os.kill(proc.pid, signum)
+        except ProcessLookupError:
+            kill_group()
+            return
+        killer = threading.Timer(GRACE_S, kill_group)
+        killer.daemon = True
+        killer.start()
 
     for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
         signal.signal(sig, forward)
