@@ -11,9 +11,9 @@ time of the jobs finished), so that it holds on a slower or busier machine and w
 with no record counts as the median job.
 
 Killing this process (SIGTERM, SIGINT, SIGHUP) ends Snakemake and its jobs: they run in a process group of their
-own, whose leader passes the signal on to the group as a whole, once, and the group is killed (SIGKILL) if any of it is
-still there GRACE_S seconds later; SIGKILL, which cannot be passed on, ends them too, through the group's leader (a child of
-this process that Linux signals when its parent dies). Snakemake's exit status is this command's.
+own, whose leader passes the signal on to the group as a whole, once, and the group is killed (SIGKILL) if any of it
+is still there GRACE_S seconds later; SIGKILL, which cannot be passed on, ends them too, through the group's leader (a
+child of this process that Linux signals when its parent dies). Snakemake's exit status is this command's.
 """
 from __future__ import annotations
 

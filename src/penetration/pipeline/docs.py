@@ -825,11 +825,15 @@ def erosion_free_chaos(read) -> str:
     return "\n".join(lines) + "\n" + tail
 
 
+def _studies(read) -> dict:
+    """workflow/studies.yaml: study name -> what it asks, its outputs (patterns) and, if older, what built them."""
+    import yaml
+    return yaml.safe_load(read("workflow/studies.yaml"))
+
+
 def studies(read) -> str:
     """The research studies as workflow/studies.yaml lists them: name, what each asks, its outputs (patterns)."""
-    import yaml
-
-    listed = yaml.safe_load(read("workflow/studies.yaml"))
+    listed = _studies(read)
     lines = ["| study | what it asks | output patterns |", "|---|---|---|"]
     lines += [f"| `{name}` | {s['what']} | {len(s['outputs'])} |" for name, s in listed.items()]
     return "\n".join(lines) + "\n"
@@ -838,9 +842,7 @@ def studies(read) -> str:
 def built_with(read) -> str:
     """The studies whose committed outputs come from an older code or model than the rebuild's (workflow/studies.yaml,
     each study's `built_with`): what each asks and what its outputs were built with, until it is run again."""
-    import yaml
-
-    listed = yaml.safe_load(read("workflow/studies.yaml"))
+    listed = _studies(read)
     old = {name: s for name, s in listed.items() if s.get("built_with")}
     if not old:
         return "Every study's committed outputs come from the current code and model (`workflow/studies.yaml`).\n"
