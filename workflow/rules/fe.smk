@@ -79,9 +79,11 @@ rule fe_shot:
     # wildcards) names one job: accuracy_cost reads these records
     wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)),
                           nose="|".join(sorted({n for s in FE_SCENES.values() for n, _ in s}, key=len, reverse=True)),
-    # a shot of the ci profile (3 elements across, a few seconds) is too small to gain from a second thread: two
-    # such shots run side by side instead (the result is bit-identical on any thread count: tests/test_fe.py)
-    threads: lambda w: 1 if w.profile == "ci" else 2
+    # one thread: two shots side by side do more per hour than one shot on two threads (DO1 at the full mesh: 1.57
+    # times as fast on two threads as on one, but two one-thread shots side by side each as fast as alone, 1.36 times
+    # the throughput; workflow/benchmarks/fe_threads.py, figures/timing/fe_threads.csv); the result is bit-identical
+    # on any thread count (tests/test_fe.py). `--set-threads fe_shot=2` speeds up a single shot.
+    threads: 1
     resources: mem_mb=2000, runtime=30
     benchmark: "results/benchmarks/fe_shot_{profile}_{scene}_{nose}_{velocity}.tsv"
     log: "results/logs/fe_shot_{profile}_{scene}_{nose}_{velocity}.log",

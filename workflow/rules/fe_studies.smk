@@ -219,7 +219,7 @@ rule fe_ensemble_shot:
             member=lambda w: w.member, velocity_step=config["fe_ensemble"]["velocity_step"],
     wildcard_constraints: family="|".join(FE_REALISED), member=r"\d+",
                           shot="|".join(sorted((s.replace(".", r"\.") for f in FE_REALISED.values() for s in f), key=len, reverse=True)),
-    threads: 2
+    threads: 1   # as fe_shot: two one-thread shots side by side do more per hour
     resources: mem_mb=2000, runtime=lambda w: 30 if w.family == "ensemble" else 10
     benchmark: "results/benchmarks/fe_ensemble_shot_{family}_{profile}_{shot}_m{member}.tsv"
     log: "results/logs/fe_ensemble_shot_{family}_{profile}_{shot}_m{member}.log",
@@ -279,7 +279,7 @@ rule fe_realisation:
     wildcard_constraints: scene="|".join(sorted(FE_SCENES, key=len, reverse=True)),
                           nose="|".join(sorted({n for s in FE_SCENES.values() for n, _ in s}, key=len, reverse=True)),
                           member=r"[1-9][0-9]*",
-    threads: 2
+    threads: 1   # as fe_shot: two one-thread shots side by side do more per hour
     resources: mem_mb=2000, runtime=60
     benchmark: "results/benchmarks/fe_realisation_{profile}_{scene}_{nose}_{velocity}_m{member}.tsv"
     log: "results/logs/fe_realisation_{profile}_{scene}_{nose}_{velocity}_m{member}.log",
