@@ -242,7 +242,7 @@ def wall_times(read) -> str:
              f"| cavity | {_span(cav['100 zones'])} at 100 zones | one sigma_n table of 15 expansions and one trajectory: a "
              "shot on a new concrete |",
              f"| fe | {', '.join(_span(t) for _, t in fe)} at {', '.join(a for a, _ in fe)} elements across the shank radius "
-             "| mean of the benchmark records of the 12 Table 3 shot jobs (process start, kernel loading and outputs included) |",
+             f"| {by('fe')[0]['timer']} |",
              "", "(`figures/timing/accuracy_cost.csv`, machine: "
              f"{cost[0]['machine']}.)", "",
              f"- The DO1 shot at the FE level, in the pipeline's run: {_span(do1['full']['do1_wall_time_s'])} at 8 elements "

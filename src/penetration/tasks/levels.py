@@ -268,8 +268,8 @@ def accuracy_cost(inputs, outputs, params):
                      "self_reference": f"{finest_across:.3g} elements across ({finest}), mean over Table 3"})
         walls = [float(pd.read_csv(f, sep="\t").s.iloc[0]) for f in inputs.fe_benchmarks if f"/fe_shot_{p}_" in f]
         timing.append({"level": "fe", "setting": setting, "wall_time_per_shot_s": float(np.mean(walls)),
-                       "timer": f"the benchmark records of the {len(walls)} Table 3 shot jobs (mean; process start, "
-                                "kernel loading and outputs included)"})
+                       "timer": f"the benchmark records of the {len(walls)} Table 3 shot jobs (mean; one thread each, "
+                                "two jobs side by side; process start, kernel loading and outputs included)"})
     write_csv(pd.DataFrame(rows), outputs.csv)
     write_csv(pd.DataFrame(timing).assign(machine=machine_name()), outputs.timing)
 
