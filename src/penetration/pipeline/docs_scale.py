@@ -103,4 +103,41 @@ def scale_levels(read) -> str:
     return "\n".join(lines) + "\n" + tail + "\n"
 
 
-BLOCKS = {"scale_effect": scale_effect, "scale_levels": scale_levels}
+def _pt(x) -> str:
+    """A change in points to one decimal, signed, with no negative zero."""
+    text = f"{float(x):+.1f}"
+    return "+0.0" if text == "-0.0" else text
+
+
+def scale_table3(read) -> str:
+    """Table 3's contrasts (all its shots at 140 mm) at each level without the scale effect and their change with each
+    variant, in points, at the lowest and highest velocity, and the largest change over all four
+    (figures/scale/table3.csv)."""
+    rows = rows_if_any(read, "figures/scale/table3.csv")
+    if not rows:
+        return "Not yet run: `snakemake -c2 figures/scale/table3.csv`.\n"
+    contrasts = list(dict.fromkeys(r["contrast"] for r in rows))
+    velocities = sorted({float(r["velocity_ms"]) for r in rows})
+    lo, hi = velocities[0], velocities[-1]
+    lines = ["| level | variant | " + " | ".join(f"{c} at {lo:g} / {hi:g} m/s" for c in contrasts)
+             + " | largest change |", "|---|---|" + "---|" * (len(contrasts) + 1)]
+    groups = dict.fromkeys((r["level"], r["variant"]) for r in rows)
+    for level, variant in groups:
+        mine = [r for r in rows if r["level"] == level and r["variant"] == variant]
+        at = {(r["contrast"], float(r["velocity_ms"])): r for r in mine}
+        if variant == "none":
+            cells = [f"{float(at[c, lo]['ratio']):.3f} / {float(at[c, hi]['ratio']):.3f}" for c in contrasts]
+            largest = "-"
+        else:
+            cells = [f"{_pt(at[c, lo]['change_points'])} / {_pt(at[c, hi]['change_points'])} pt"
+                     for c in contrasts]
+            big = max(mine, key=lambda r: abs(float(r["change_points"])))
+            largest = f"{_pt(big['change_points'])} pt ({big['contrast']}, {float(big['velocity_ms']):g} m/s)"
+        lines.append(f"| {level} | {variant} | " + " | ".join(cells) + f" | {largest} |")
+    tail = ("\nThe rows `none` give each contrast (a depth ratio) without the effect; the others its change with the "
+            "variant, in points (100 x the change of the ratio), each level's factor fitted with the variant on the "
+            "laboratory shots (`figures/scale/table3.csv`).")
+    return "\n".join(lines) + "\n" + tail + "\n"
+
+
+BLOCKS = {"scale_effect": scale_effect, "scale_levels": scale_levels, "scale_table3": scale_table3}
