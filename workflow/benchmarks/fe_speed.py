@@ -311,13 +311,9 @@ def main():
           f"({bytes_total / 2**20:.0f} MiB)")
     if args.do1:
         from penetration.fe import shot as fe_shot
-        from penetration.fe.level import run_spec
-        from penetration.fe.shot import Settings, TargetSpec, run_shot
-        from penetration.pipeline.io import read_inference
+        from penetration.fe.shot import run_shot
 
-        # the pipeline's DO1 shot (its element size, calibrated failure strain and mesh extent)
-        ref = json.loads(Path(DO1).read_text())
-        nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]
+        spec, ref = do1_spec()
         # the DO1 state: at t = 6 ms of the shot, one full step (node pass, move, element pass over the window's
         # rows; no contact) timed on a copy of the model, per element of the window
         snap = {}
@@ -332,8 +328,7 @@ def main():
             return solver_run(model, projectile, callback=cb)
 
         fe_shot.run = run_with_snapshot
-        r = run_shot(run_spec(nose, ref["mass"], ref["velocity"], HJC(), Settings(element_size=ref["element_size"]),
-                              TargetSpec(), ref["expected_depth_m"], failure_strain=ref["failure_strain"]))
+        r = run_shot(spec)
         fe_shot.run = solver_run
         print(f"DO1 state at t = {snap['t'] * 1e3:.1f} ms ({snap['window']} elements in the window, {snap['yielded']:.0%} of them "
               f"yielded so far, {snap['flowing']:.1%} of the live ones flowing or crushing in a step): "
@@ -363,6 +358,19 @@ def main():
         print(f"  {label}: {per * 1e9:.1f} ns = {per / floor:.2f} x the floor (met: {', '.join(met) or 'neither'})")
     if args.record:
         record(args.record, times, floor, bw0, bw1, b, do1_wall=r.wall_time if args.do1 else None, threads=args.threads)
+
+
+def do1_spec(path=DO1):
+    """(the run spec, the record) of the pipeline's DO1 shot at ``path``: its element size, calibrated failure strain
+    and mesh extent, to run it again."""
+    from penetration.fe.level import run_spec
+    from penetration.fe.shot import Settings, TargetSpec
+    from penetration.pipeline.io import read_inference
+
+    ref = json.loads(Path(path).read_text())
+    nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]
+    return run_spec(nose, ref["mass"], ref["velocity"], HJC(), Settings(element_size=ref["element_size"]), TargetSpec(),
+                    ref["expected_depth_m"], failure_strain=ref["failure_strain"]), ref
 
 
 def record(path, times, floor, bw0, bw1, bytes_per, do1_wall, threads):

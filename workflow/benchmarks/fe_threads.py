@@ -22,23 +22,18 @@ import sys
 import time
 from pathlib import Path
 
+from fe_speed import DO1
 from nstar_speed import machine
 
-SHOT = "results/fe/full/do1/double_ogive_835.json"
 CHILD = r"""
-import json, sys, time
-from penetration.concrete.hjc import HJC
-from penetration.fe.level import run_spec
-from penetration.fe.shot import Settings, TargetSpec, run_shot
-from penetration.pipeline.io import read_inference
-ref = json.loads(open(sys.argv[1]).read())
-nose = read_inference("results/geometry/double_ogive_table4.json")["nose"]
-spec = run_spec(nose, ref["mass"], ref["velocity"], HJC(), Settings(element_size=ref["element_size"]), TargetSpec(),
-                ref["expected_depth_m"], failure_strain=ref["failure_strain"])
+import json, sys
+sys.path.insert(0, "workflow/benchmarks")
+from fe_speed import do1_spec
+from penetration.fe.shot import run_shot
+spec, ref = do1_spec(sys.argv[1])
 r = run_shot(spec)
 print("RESULT " + json.dumps({"depth": r.depth, "wall": r.wall_time, "same": r.depth == ref["depth_m"]}))
 """
-
 
 def launch(shot: str, threads: int) -> subprocess.Popen:
     env = dict(os.environ, NUMBA_NUM_THREADS=str(threads))
@@ -54,7 +49,7 @@ def result(proc: subprocess.Popen) -> dict:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--shot", default=SHOT, help="a shot record of the fe level at the default mesh (default: DO1)")
+    ap.add_argument("--shot", default=DO1, help="a shot record of the fe level at the default mesh (default: DO1)")
     ap.add_argument("--record", help="append the figures to this CSV (figures/timing/fe_threads.csv)")
     args = ap.parse_args(argv)
     if not Path(args.shot).exists():
@@ -65,8 +60,8 @@ def main(argv=None) -> int:
         t0 = time.monotonic()
         r = result(launch(args.shot, threads))
         runs[label] = r | {"process": time.monotonic() - t0}
-        print(f"{label}: solver {r['wall']:.1f} s, process {runs[label]['process']:.1f} s, depth {r['depth']!r} m "
-              f"({'the pipeline' + chr(39) + 's bit for bit' if r['same'] else 'DIFFERENT from the pipeline'})")
+        same = "the pipeline's bit for bit" if r["same"] else "DIFFERENT from the pipeline"
+        print(f"{label}: solver {r['wall']:.1f} s, process {runs[label]['process']:.1f} s, depth {r['depth']!r} m ({same})")
     t0 = time.monotonic()
     pair = [launch(args.shot, 1), launch(args.shot, 1)]
     rs = [result(p) for p in pair]
