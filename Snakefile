@@ -57,6 +57,7 @@ RESEARCH = study_outputs("workflow/studies.yaml", "workflow/schemas/studies.sche
     "cvariant": [v for v in config["scale_effect"]["levels"].get("cavity", []) if v != "none"],
     "fvariant": [v for v in config["scale_effect"]["levels"].get("fe", []) if v != "none"],
     "ss": [f"{v:g}" for v in config["validation"]["laboratory"]["strength_scales"]],
+    "sfs": [f"{v:g}" for v in config["scale_effect"]["fe_failure_strains"]],
     "sprofile": [config["scale_effect"]["fe_profile"]]}, CHECK_STUDIES)
 STUDY_OUTPUTS = [path for paths in RESEARCH.values() for path in paths]
 

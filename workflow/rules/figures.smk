@@ -358,11 +358,15 @@ SCALE_FE_PROFILE = SCALE["fe_profile"]
 SCALE_PIECE = "figures/scale/fe_{profile}/{variant}/fs_{value}.csv"
 
 
+SCALE_FE_GRID = [f"{v:g}" for v in SCALE["fe_failure_strains"]]
+
+
 def scale_fe_pieces(variant):
-    """The committed grid pieces of the fe level's calibration with one variant."""
+    """The committed grid pieces of the fe level's calibration with one variant (none: the laboratory calibration's
+    grid; the others: scale_effect.fe_failure_strains)."""
     if variant == "none":
         return [f"figures/fe/{SCALE_FE_PROFILE}/laboratory_grid/fs_{v}.csv" for v in FE_LAB_GRID]
-    return [SCALE_PIECE.format(profile=SCALE_FE_PROFILE, variant=variant, value=v) for v in FE_LAB_GRID]
+    return [SCALE_PIECE.format(profile=SCALE_FE_PROFILE, variant=variant, value=v) for v in SCALE_FE_GRID]
 
 
 SCALE_CAVITY_PIECE = "figures/scale/cavity/{variant}/s_{value}.csv"
@@ -380,7 +384,7 @@ def scale_cavity_pieces(variant):
 
 SCALE_GRIDS = {"fe": {name: scale_fe_pieces(name) for name in SCALE["levels"].get("fe", [])},
                "cavity": {name: scale_cavity_pieces(name) for name in SCALE["levels"].get("cavity", [])}}
-SCALE_FE_VALUES = "|".join(v.replace(".", r"\.") for v in FE_LAB_GRID)
+SCALE_FE_VALUES = "|".join(v.replace(".", r"\.") for v in SCALE_FE_GRID)
 SCALE_CAVITY_VALUES = "|".join(v.replace(".", r"\.") for v in CAVITY_LAB_GRID)
 SCALE_VARIANTS = "|".join(n for n in SCALE["variants"] if n != "none")
 
@@ -448,11 +452,19 @@ rule scale_cavity_grid_value:
 
 # Geometric similarity (a study): X/d against calibre at each level with the scale effect's variants, their factors
 # calibrated by scale_validation, beside the empirical formulas' size laws.
+SIMILARITY_LEVELS = list(SCALE["similarity"]["levels"])
+# Table 3 at the analytic and cavity levels: the fe level's variants are calibrated at scale_effect.fe_profile's mesh,
+# not one of Table 3's
+TABLE3_SCALE_LEVELS = [level for level in SIMILARITY_LEVELS if level != "fe"]
+SIMILARITY_CFG = cfg_slice("concrete", "cavity", "validation", "scale_effect",
+                           **({"fe": fe_cfg(SCALE_FE_PROFILE)} if "fe" in SIMILARITY_LEVELS else {}))
+
+
 rule scale_similarity:
     input: **task("tasks.scale"), reference=config["reference"],
-           calibrations=[f"figures/scale/calibration_{level}.csv" for level in config["scale_effect"]["similarity"]["levels"]],
+           calibrations=[f"figures/scale/calibration_{level}.csv" for level in SIMILARITY_LEVELS],
     output: csv="figures/scale/similarity.csv", png="figures/scale/similarity.png",
-    params: cfg=cfg_slice("concrete", "cavity", "validation", "scale_effect"), dpi=config["figures"]["dpi"],
+    params: cfg=SIMILARITY_CFG, dpi=config["figures"]["dpi"],
     threads: 1
     resources: mem_mb=2000, runtime=30
     benchmark: "results/benchmarks/scale_similarity.tsv"
@@ -464,7 +476,7 @@ rule scale_similarity:
 rule scale_table3:
     input: **task("tasks.scale"), **GEOMETRY_RESULTS, **scene_input("workflow/scenes/table3_stated.yaml"),
            schema=SCENE_SCHEMA, reference=config["reference"],
-           calibrations=[f"figures/scale/calibration_{level}.csv" for level in config["scale_effect"]["similarity"]["levels"]],
+           calibrations=[f"figures/scale/calibration_{level}.csv" for level in TABLE3_SCALE_LEVELS],
     output: csv="figures/scale/table3.csv",
     params: cfg=cfg_slice("concrete", "cavity", "validation", "scale_effect"),
     threads: 1

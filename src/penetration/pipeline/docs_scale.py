@@ -32,6 +32,19 @@ def _facts(read):
     return do1, calibre, len(shots)
 
 
+def _fe_mesh(read) -> str:
+    """The sentence that says at which mesh the fe level's study ran (from its calibration record), or ''."""
+    import yaml
+
+    fits = rows_if_any(read, "figures/scale/calibration_fe.csv")
+    if not fits:
+        return ""
+    across = sorted({f"{float(r['elements_across_radius']):g}" for r in fits})
+    profile = yaml.safe_load(read("workflow/config.yaml"))["scale_effect"]["fe_profile"]
+    return (f" The fe level runs at the {profile} mesh ({' or '.join(across)} elements across each shot's shank radius), "
+            "one realisation per shot and grid value.")
+
+
 def _validations(read):
     """(level -> the rows of its figures/scale/validation_LEVEL.csv, the config's levels whose study has not run)."""
     import yaml
@@ -69,7 +82,7 @@ def scale_effect(read) -> str:
     tail = (f"\nGoals: held-out median |error| <= {100 * GOALS['loso_median']:.0f} % and 90th percentile <= "
             f"{100 * GOALS['loso_p90']:.0f} % (both series left out in turn, pooled), the two series' factors within a "
             f"ratio of {GOALS['split_ratio']:.2f}, DO1 within {100 * GOALS['do1']:.0f} % of {do1} (predicted with the "
-            f"factor fitted on all {n} laboratory shots; DO1 enters no fit).")
+            f"factor fitted on all {n} laboratory shots; DO1 enters no fit).") + _fe_mesh(read)
     if missing:
         tail += " Not yet run: " + ", ".join(f"`snakemake -c2 figures/scale/validation_{lv}.csv`" for lv in missing) + "."
     return "\n".join(lines) + "\n" + tail + "\n"
@@ -97,7 +110,7 @@ def scale_levels(read) -> str:
             "one factor is fitted on the laboratory shots with the variant (a calibration); the best variant is the one "
             "of the smallest held-out median. The analytic rows fit a factor on Li & Chen's S per series, hence their "
             "larger errors than the closed form's with S as published, whose authors fitted it on data that include "
-            "these shots. Every variant: [docs/scale-effect.md](docs/scale-effect.md).")
+            "these shots." + _fe_mesh(read) + " Every variant: [docs/scale-effect.md](docs/scale-effect.md).")
     if missing:
         tail += " Not yet run: " + ", ".join(f"`snakemake -c2 figures/scale/validation_{lv}.csv`" for lv in missing) + "."
     return "\n".join(lines) + "\n" + tail + "\n"

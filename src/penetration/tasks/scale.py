@@ -13,7 +13,7 @@ from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
-from ..shots.records import context_from_files, with_scale_effect
+from ..shots.records import NO_SIZE, context_from_files, with_scale_effect
 from ..studies.laboratory import FITTED, Protocol
 from ..studies.fe_results import CONTRASTS
 from ..studies.scale import split_summary
@@ -44,6 +44,9 @@ def scale_validation(inputs, outputs, params):
                                                               "fe": "failure_strains"}[level]]
     profile = study["fe_profile"]
     protocol = Protocol.from_config(lab, grid)
+    # the fe level's variants with the effect have a grid of their own (the variant none: the laboratory's)
+    protocols = {name: (Protocol.from_config(lab, study["fe_failure_strains"]) if level == "fe" and name != NO_SIZE
+                        else protocol) for name in study["levels"][level]}
     _, rows = read_rows(inputs.shots)
     refs = reference.load_reference(inputs.reference)
     mass, vs, depth = do1_shot(refs, params.shot)
@@ -56,13 +59,14 @@ def scale_validation(inputs, outputs, params):
         print(f"{level}, variant {name}: calibrating on {len(rows)} laboratory shots", flush=True)
         pieces = (params.grids or {}).get(name)
         column = FITTED[level][1]
+        own = protocols[name]
         if isinstance(pieces, dict):   # the variant without the effect: the laboratory calibration's own grid
-            grid_runs = lambda rs, p=pieces: grid_runs_from_table(p["table"], p["timing"], rs, grid, column)
+            grid_runs = lambda rs, p=pieces, g=own.grid: grid_runs_from_table(p["table"], p["timing"], rs, g, column)
         elif pieces is not None:       # the grid in committed pieces, one per value
-            grid_runs = lambda rs, paths=pieces: grid_runs_from(paths, rs, grid, column)
+            grid_runs = lambda rs, paths=pieces, g=own.grid: grid_runs_from(paths, rs, g, column)
         else:
             grid_runs = None
-        f, p, _, timing = calibrate_on_laboratory(level, ctx, rows, protocol, params.shots_path,
+        f, p, _, timing = calibrate_on_laboratory(level, ctx, rows, own, params.shots_path,
                                                   lambda m: print("  " + m, flush=True), grid_runs)
         cols = variant_columns(name, effect)
         fits.append(f.assign(**cols, grid_wall_time_s=float(timing.wall_time_s.iloc[0])))
@@ -85,17 +89,22 @@ def scale_validation(inputs, outputs, params):
 
 def calibrated_context(cfg, reference_path, calibrations, level, name, where):
     """The levels' context with variant ``name`` of the scale effect and ``level``'s factor as scale_validation
-    fitted it on all laboratory shots (``calibrations``: its calibration tables); ``where`` names the config entry
-    that asks for it in the error when there is none."""
-    ctx = with_scale_effect(context_from_files(cfg, reference_path), cfg, calibrations, level, name, where)
+    fitted it on all laboratory shots (``calibrations``: its calibration tables), the fe level at the study's mesh
+    profile (scale_effect.fe_profile); ``where`` names the config entry that asks for it in the error when there is
+    none."""
+    profile = cfg["scale_effect"]["fe_profile"] if level == "fe" else "full"
+    ctx = with_scale_effect(context_from_files(cfg, reference_path, profile=profile), cfg, calibrations, level, name,
+                            where)
     return ctx, float(getattr(ctx, FITTED[level][0]))
 
 
 def similar_shots(spec, refs):
-    """The similarity figure's shots: an ogive of the spec's CRH at each calibre, the mass DO1's M/d^3 times d^3."""
+    """The similarity figure's shots: an ogive of the spec's CRH at each calibre, the mass DO1's M/d^3 times d^3 and
+    the length (read by the fe level only) DO1's L/d times d."""
     per_volume = refs["table2.mass"].si / refs["table2.diameter"].si ** 3
+    per_calibre = refs["table2.length"].si / refs["table2.diameter"].si
     return [UserShot(Ogive(spec["crh"], d / 2), per_volume * d ** 3, spec["velocity"], spec["fc"], spec["density"],
-                     label=f"{d * 1e3:g} mm") for d in spec["calibres"]]
+                     label=f"{d * 1e3:g} mm", length=per_calibre * d) for d in spec["calibres"]]
 
 
 @task
