@@ -128,3 +128,46 @@ def test_the_fe_level_applies_the_crack_band_at_its_scaled_element_size():
     assert spec.material.efmin == crack_band_strain(fe_material(shot, ctx), spec.settings.element_size)
     plain, _ = fe_spec(shot, Context(failure_strain=1.6))
     assert plain.material.efmin == fe_material(shot, ctx).efmin
+
+
+def test_the_similarity_figures_shots_are_geometrically_similar_to_do1():
+    """Each shot of the similarity study has DO1's mass over calibre cubed and its length over calibre (Table 2:
+    81.1 kg, 140 mm, 1.13 m), so that at the DO1 calibre it is DO1's projectile with a CRH 3 nose."""
+    from pathlib import Path
+
+    import yaml
+
+    from penetration.paper import reference
+    from penetration.tasks.scale import similar_shots
+    root = Path(__file__).resolve().parents[1]
+    cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
+    spec = {**cfg["scale_effect"]["similarity"], "calibres": [0.01, 0.14, 0.25]}
+    shots = similar_shots(spec, reference.load_reference(root / cfg["reference"]))
+    for s, d in zip(shots, spec["calibres"]):
+        assert 2 * s.nose.radius == pytest.approx(d, rel=1e-14)
+        assert s.mass / d ** 3 == pytest.approx(81.1 / 0.14 ** 3, rel=1e-12)
+        assert s.length / d == pytest.approx(1.13 / 0.14, rel=1e-12)
+    assert shots[1].mass == pytest.approx(81.1, rel=1e-12) and shots[1].length == pytest.approx(1.13, rel=1e-12)
+
+
+@pytest.mark.parametrize("level", ["analytic", "cavity", "fe"])
+def test_every_committed_fit_of_the_scale_effect_lies_inside_its_grid(level):
+    """A least-squares factor found at a grid's end is a bound, not a fit: each committed calibration of the scale
+    effect's study (every variant and fold) lies strictly between its grid's first and last values (the config's
+    grid for the level and variant)."""
+    from pathlib import Path
+
+    import pandas as pd
+    import yaml
+    root = Path(__file__).resolve().parents[1]
+    path = root / f"figures/scale/calibration_{level}.csv"
+    if not path.is_file():
+        pytest.skip(f"{path.name} not built")
+    cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
+    lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
+    fits = pd.read_csv(path)
+    assert not fits.at_grid_edge.any(), fits[fits.at_grid_edge]
+    for variant, g in fits.groupby("variant"):
+        grid = (study["s_scales"] if level == "analytic" else lab["strength_scales"] if level == "cavity"
+                else lab["failure_strains"] if variant == "none" else study["fe_failure_strains"])
+        assert ((g.value > min(grid)) & (g.value < max(grid))).all(), (variant, list(g.value), grid)
