@@ -1,7 +1,7 @@
 """Compile the package's numba kernels once, at install: ``python -m penetration.warmup``.
 
 The cavity and finite-element kernels are compiled on their first call and cached on disk next to their modules
-(``numba_cache``); a fresh install would otherwise spend about a minute of a user's first FE shot compiling. This
+(``numba_cache``); a fresh install would otherwise spend a user's first FE shot compiling (1-4 min on 2 cores). This
 runs one tiny shot at the cavity and FE levels (a CRH 3 ogive of 1 cm radius at 300 m/s, 3 elements across the
 radius), which compiles and caches every kernel those levels call, and prints what it did and how long it took.
 """
@@ -13,7 +13,7 @@ import time
 
 def main() -> int:
     t0 = time.perf_counter()
-    print("compiling the cavity and finite-element kernels (once per install; about a minute on 2 cores)...",
+    print("compiling the cavity and finite-element kernels (once per install; 1-4 min on 2 cores)...",
           file=sys.stderr, flush=True)
     from .fe.shot import Settings
     from .nose.geometry import Ogive
