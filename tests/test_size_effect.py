@@ -163,11 +163,10 @@ def test_every_committed_fit_of_the_scale_effect_lies_inside_its_grid(level):
     path = root / f"figures/scale/calibration_{level}.csv"
     if not path.is_file():
         pytest.skip(f"{path.name} not built")
+    from penetration.studies.scale import scale_grid
     cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
-    lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
     fits = pd.read_csv(path)
     assert not fits.at_grid_edge.any(), fits[fits.at_grid_edge]
     for variant, g in fits.groupby("variant"):
-        grid = (study["s_scales"] if level == "analytic" else lab["strength_scales"] if level == "cavity"
-                else lab["failure_strains"] if variant == "none" else study["fe_failure_strains"])
+        grid = scale_grid(cfg, level, variant)
         assert ((g.value > min(grid)) & (g.value < max(grid))).all(), (variant, list(g.value), grid)

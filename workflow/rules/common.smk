@@ -8,6 +8,7 @@ from penetration.pipeline.dispatch import (fe_calibrated_scenes, fe_scene_shots,
                                           size_params, study_input, study_outputs, task, uncommitted)
 from penetration.levels import LEVELS
 from penetration.pipeline.scenes import scene_names
+from penetration.studies.scale import scale_grid
 from penetration.tasks.reference import checked_outputs
 
 # Stop before any job runs if the config (file plus --config overrides) is invalid.

@@ -358,15 +358,17 @@ SCALE_FE_PROFILE = SCALE["fe_profile"]
 SCALE_PIECE = "figures/scale/fe_{profile}/{variant}/fs_{value}.csv"
 
 
-SCALE_FE_GRID = [f"{v:g}" for v in SCALE["fe_failure_strains"]]
+def scale_fe_grid(variant):
+    """The fe level's grid values with one variant, as written in the pieces' names (studies.scale.scale_grid)."""
+    return [f"{v:g}" for v in scale_grid(config, "fe", variant)]
 
 
 def scale_fe_pieces(variant):
     """The committed grid pieces of the fe level's calibration with one variant (none: the laboratory calibration's
-    grid; the others: scale_effect.fe_failure_strains)."""
+    own pieces)."""
     if variant == "none":
-        return [f"figures/fe/{SCALE_FE_PROFILE}/laboratory_grid/fs_{v}.csv" for v in FE_LAB_GRID]
-    return [SCALE_PIECE.format(profile=SCALE_FE_PROFILE, variant=variant, value=v) for v in SCALE_FE_GRID]
+        return [f"figures/fe/{SCALE_FE_PROFILE}/laboratory_grid/fs_{v}.csv" for v in scale_fe_grid(variant)]
+    return [SCALE_PIECE.format(profile=SCALE_FE_PROFILE, variant=variant, value=v) for v in scale_fe_grid(variant)]
 
 
 SCALE_CAVITY_PIECE = "figures/scale/cavity/{variant}/s_{value}.csv"
@@ -384,7 +386,8 @@ def scale_cavity_pieces(variant):
 
 SCALE_GRIDS = {"fe": {name: scale_fe_pieces(name) for name in SCALE["levels"].get("fe", [])},
                "cavity": {name: scale_cavity_pieces(name) for name in SCALE["levels"].get("cavity", [])}}
-SCALE_FE_VALUES = "|".join(v.replace(".", r"\.") for v in SCALE_FE_GRID)
+SCALE_FE_VALUES = "|".join(v.replace(".", r"\.") for n in SCALE["levels"].get("fe", []) if n != "none"
+                           for v in scale_fe_grid(n))
 SCALE_CAVITY_VALUES = "|".join(v.replace(".", r"\.") for v in CAVITY_LAB_GRID)
 SCALE_VARIANTS = "|".join(n for n in SCALE["variants"] if n != "none")
 

@@ -13,10 +13,10 @@ from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
-from ..shots.records import NO_SIZE, context_from_files, with_scale_effect
+from ..shots.records import context_from_files, with_scale_effect
 from ..studies.laboratory import FITTED, Protocol
 from ..studies.fe_results import CONTRASTS
-from ..studies.scale import split_summary
+from ..studies.scale import scale_grid, split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
 from .laboratory import calibrate_on_laboratory, grid_runs_from, grid_runs_from_table, write_grid_piece
 
@@ -40,13 +40,8 @@ def scale_validation(inputs, outputs, params):
     each variant (the two series' fitted factors and their ratio, the pooled leave-one-series-out errors) and DO1."""
     cfg, level = params.cfg, params.level
     lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
-    grid = study["s_scales"] if level == "analytic" else lab[{"cavity": "strength_scales",
-                                                              "fe": "failure_strains"}[level]]
     profile = study["fe_profile"]
-    protocol = Protocol.from_config(lab, grid)
-    # the fe level's variants with the effect have a grid of their own (the variant none: the laboratory's)
-    protocols = {name: (Protocol.from_config(lab, study["fe_failure_strains"]) if level == "fe" and name != NO_SIZE
-                        else protocol) for name in study["levels"][level]}
+    protocols = {name: Protocol.from_config(lab, scale_grid(cfg, level, name)) for name in study["levels"][level]}
     _, rows = read_rows(inputs.shots)
     refs = reference.load_reference(inputs.reference)
     mass, vs, depth = do1_shot(refs, params.shot)
@@ -83,7 +78,7 @@ def scale_validation(inputs, outputs, params):
     fits, predictions, do1 = pd.concat(fits), pd.concat(predictions), pd.DataFrame(do1)
     write_csv(fits, outputs.csv)
     write_csv(predictions, outputs.predictions)
-    write_csv(split_summary(fits, predictions, do1, list(protocol.series)), outputs.summary)
+    write_csv(split_summary(fits, predictions, do1, list(lab["series"])), outputs.summary)
     write_csv(do1, outputs.do1)
 
 
