@@ -163,7 +163,7 @@ def test_every_committed_fit_of_the_scale_effect_lies_inside_its_grid(level):
     path = root / f"figures/scale/calibration_{level}.csv"
     if not path.is_file():
         pytest.skip(f"{path.name} not built")
-    from penetration.studies.scale import scale_grid
+    from penetration.pipeline.config import scale_grid
     cfg = yaml.safe_load((root / "workflow/config.yaml").read_text())
     fits = pd.read_csv(path)
     assert not fits.at_grid_edge.any(), fits[fits.at_grid_edge]

@@ -3,13 +3,12 @@
 # the inputs of a committed record). Included first by the Snakefile.
 from pathlib import Path
 
-from penetration.pipeline.config import check_config, check_config_files, load_check, mesh_profiles
+from penetration.pipeline.config import (check_config, check_config_files, checked_outputs, load_check, mesh_profiles,
+                                         scale_grid)
 from penetration.pipeline.dispatch import (fe_calibrated_scenes, fe_scene_shots, fe_shot_owners, load_studies, scene_input,
                                           size_params, study_input, study_outputs, task, uncommitted)
 from penetration.levels import LEVELS
 from penetration.pipeline.scenes import scene_names
-from penetration.studies.scale import scale_grid
-from penetration.tasks.reference import checked_outputs
 
 # Stop before any job runs if the config (file plus --config overrides) is invalid.
 check_config(config, "workflow/schemas/config.schema.json", "workflow/config.yaml (with overrides)")

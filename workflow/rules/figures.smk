@@ -359,7 +359,7 @@ SCALE_PIECE = "figures/scale/fe_{profile}/{variant}/fs_{value}.csv"
 
 
 def scale_fe_grid(variant):
-    """The fe level's grid values with one variant, as written in the pieces' names (studies.scale.scale_grid)."""
+    """The fe level's grid values with one variant, as written in the pieces' names (pipeline.config.scale_grid)."""
     return [f"{v:g}" for v in scale_grid(config, "fe", variant)]
 
 

@@ -23,7 +23,7 @@ class ConfigError(ValueError):
     """A config file that does not satisfy its schema."""
 
 
-class _StrictLoader(yaml.SafeLoader):
+class _StrictLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):   # libyaml's parser where PyYAML has it
     """YAML loader that refuses a key given twice in one mapping (PyYAML keeps the last silently)."""
 
     def construct_mapping(self, node, deep=False):
@@ -428,6 +428,26 @@ def load_check(path, schema_path) -> dict:
     if bad:
         raise ConfigError("\n".join(bad))
     return check
+
+
+def checked_outputs(check, profiles, bands=(), section="outputs"):
+    """The output specs by path of one section of the check (``outputs``: the paper's target; ``studies``: the
+    studies'): a ``{profile}`` entry stands for each of ``profiles``, a ``{band}`` one for each of ``bands`` (the band
+    profiles of fe_band)."""
+    return {path.format(profile=p, band=b): spec for path, spec in check[section].items()
+            for p in (profiles if "{profile}" in path else [None]) for b in (bands if "{band}" in path else [None])}
+
+
+def scale_grid(cfg, level, variant) -> list:
+    """The grid of ``level``'s factor in the scale effect's study with ``variant`` (``cfg``: the config mapping): the
+    closed form's scale_effect.s_scales, the cavity level's laboratory strength scales, and the fe level's laboratory
+    failure strains without the effect and scale_effect.fe_failure_strains with it (the rate law wants lower ones)."""
+    lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
+    if level == "analytic":
+        return study["s_scales"]
+    if level == "cavity":
+        return lab["strength_scales"]
+    return lab["failure_strains"] if variant == "none" else study["fe_failure_strains"]
 
 
 @dataclass(frozen=True)

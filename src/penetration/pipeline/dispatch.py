@@ -9,9 +9,12 @@ module.
 from __future__ import annotations
 
 import ast
+import atexit
 import functools
+import hashlib
 import importlib
 import json
+import os
 from pathlib import Path
 
 from . import config
@@ -20,6 +23,7 @@ PACKAGE = Path(__file__).resolve().parents[1]
 NAME = PACKAGE.name
 
 
+@functools.lru_cache(maxsize=None)
 def _module_file(dotted: str) -> Path:
     """File of a package module given as 'tasks.cavity' (package directories give their __init__)."""
     base = PACKAGE.joinpath(*dotted.split(".")) if dotted else PACKAGE
@@ -38,16 +42,13 @@ def _dotted(path: Path) -> str:
     return ".".join(parts)
 
 
-@functools.lru_cache(maxsize=None)
-def _imported(path: Path) -> frozenset[str]:
-    """Dotted names (relative to the package) of the package modules that ``path`` imports, anywhere in it.
-
-    Cached per file for the life of the process (a Snakefile's parse asks for the closure of some 70 tasks,
-    which share most of their modules; parsing each module once instead of at every ask saves about 12 s)."""
+def _parsed_imports(path: Path, source: str) -> list[str]:
+    """Dotted names (relative to the package) of the package modules that ``source``, the text of ``path``, imports,
+    anywhere in it (modules that do not exist included: ``_imported`` filters them)."""
     here = _dotted(path).split(".") if _dotted(path) else []
     package = here if path.name == "__init__.py" else here[:-1]
     found = set()
-    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+    for node in ast.walk(ast.parse(source, str(path))):
         if isinstance(node, ast.ImportFrom):
             if node.level:
                 base = package[:len(package) - node.level + 1]
@@ -63,9 +64,56 @@ def _imported(path: Path) -> frozenset[str]:
             found.update(".".join(stem + [a.name]) for a in node.names)  # 'from . import x' imports module x
         elif isinstance(node, ast.Import):
             found.update(a.name.partition(".")[2] for a in node.names if a.name.split(".")[0] == NAME)
-    return frozenset(m for m in found if _exists(m))
+    return sorted(found)
 
 
+# The parsed imports of each module by the digest of its text, kept between processes (every Snakemake run parses
+# the Snakefile, which asks for the closures of its tasks: parsing some 150 modules costs seconds, reading their
+# digests milliseconds). A derived file beside the compiled modules; a module whose text changed is parsed again.
+IMPORTS_CACHE = PACKAGE / "__pycache__" / "pipeline_imports.json"
+_DIRTY: list = []
+
+
+@functools.lru_cache(maxsize=None)
+def _imports_cache() -> dict:
+    try:
+        data = json.loads(IMPORTS_CACHE.read_text())
+    except (OSError, ValueError):
+        return {}
+    return data if isinstance(data, dict) else {}
+
+
+def _save_imports_cache() -> None:
+    """Write the cache whole, through a temporary file (a reader never sees half of it; of two writers the last
+    wins, and either's file is complete)."""
+    try:
+        IMPORTS_CACHE.parent.mkdir(exist_ok=True)
+        tmp = IMPORTS_CACHE.with_name(f"{IMPORTS_CACHE.name}.{os.getpid()}.tmp")
+        tmp.write_text(json.dumps(_imports_cache(), sort_keys=True))
+        os.replace(tmp, IMPORTS_CACHE)
+    except OSError:
+        pass   # a read-only install: the closures are parsed each time, as without a cache
+
+
+@functools.lru_cache(maxsize=None)
+def _imported(path: Path) -> frozenset[str]:
+    """Dotted names (relative to the package) of the package modules that ``path`` imports, anywhere in it.
+
+    Cached per file for the life of the process (a Snakefile's parse asks for the closure of some 70 tasks,
+    which share most of their modules), and between processes by the digest of the file's text (IMPORTS_CACHE)."""
+    text = path.read_bytes()
+    digest = hashlib.sha1(text).hexdigest()
+    cache, key = _imports_cache(), _dotted(path) or "."
+    entry = cache.get(key)
+    if not (isinstance(entry, list) and len(entry) == 2 and entry[0] == digest):
+        entry = cache[key] = [digest, _parsed_imports(path, text.decode())]
+        if not _DIRTY:
+            _DIRTY.append(True)
+            atexit.register(_save_imports_cache)   # once, whole, when the process ends
+    return frozenset(m for m in entry[1] if _exists(m))
+
+
+@functools.lru_cache(maxsize=None)
 def _exists(dotted: str) -> bool:
     try:
         _module_file(dotted)

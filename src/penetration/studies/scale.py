@@ -14,18 +14,6 @@ from .laboratory import errors_summary
 VARIANT = ["variant", "mechanisms", "beyond", "aggregate_m", "lambda0", "transitional_size_m"]
 
 
-def scale_grid(cfg, level, variant) -> list:
-    """The grid of ``level``'s factor in the scale effect's study with ``variant`` (``cfg``: the config mapping): the
-    closed form's scale_effect.s_scales, the cavity level's laboratory strength scales, and the fe level's laboratory
-    failure strains without the effect and scale_effect.fe_failure_strains with it (the rate law wants lower ones)."""
-    lab, study = cfg["validation"]["laboratory"], cfg["scale_effect"]
-    if level == "analytic":
-        return study["s_scales"]
-    if level == "cavity":
-        return lab["strength_scales"]
-    return lab["failure_strains"] if variant == "none" else study["fe_failure_strains"]
-
-
 def split_summary(fits, predictions, do1, series):
     """One row per (level, variant): the factor fitted on each series alone (the folds whose fit holds one series),
     their ratio (largest over smallest), the pooled held-out errors of the leave-one-series-out folds with each

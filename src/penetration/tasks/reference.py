@@ -250,14 +250,6 @@ def _gap(x, y, rtol, atol, scale, decades):
     return gap, allowed, np.where(log, "decades apart", "|difference|")
 
 
-def checked_outputs(check, profiles, bands=(), section="outputs"):
-    """The output specs by path of one section of the check (``outputs``: the paper's target; ``studies``: the
-    studies'): a ``{profile}`` entry stands for each of ``profiles``, a ``{band}`` one for each of ``bands`` (the band
-    profiles of fe_band)."""
-    return {path.format(profile=p, band=b): spec for path, spec in check[section].items()
-            for p in (profiles if "{profile}" in path else [None]) for b in (bands if "{band}" in path else [None])}
-
-
 def _committed(path):
     """Text of ``path`` at git HEAD, or None when not tracked or no git."""
     try:
