@@ -222,3 +222,34 @@ def test_no_rule_takes_the_whole_config_as_a_param():
     text += (ROOT / "Snakefile").read_text()
     whole = re.findall(r"^\s*(?:params:)?.*\b\w+=(?:config\s*[,)\n]|lambda \w+: \{\*\*config\b)", text, re.M)
     assert whole == []
+
+
+def test_a_modules_parsed_imports_are_kept_until_its_text_changes(tmp_path, monkeypatch):
+    """The imports each module's text gives are kept between processes (the cache file) by the text's digest: a
+    second process reads them without parsing, and a module edited since is parsed again, never served stale."""
+    from penetration.pipeline import dispatch
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    for name, text in {"__init__.py": "", "a.py": "from . import b\n", "b.py": "", "c.py": ""}.items():
+        (pkg / name).write_text(text)
+    monkeypatch.setattr(dispatch, "PACKAGE", pkg)
+    monkeypatch.setattr(dispatch, "NAME", "pkg")
+    monkeypatch.setattr(dispatch, "IMPORTS_CACHE", tmp_path / "imports.json")
+    parsed = []
+    real = dispatch._parsed_imports
+    monkeypatch.setattr(dispatch, "_parsed_imports", lambda path, text: parsed.append(path.name) or real(path, text))
+
+    def new_process():
+        for f in (dispatch._imported, dispatch._imports_cache, dispatch._module_file, dispatch._exists):
+            f.cache_clear()
+
+    new_process()
+    assert dispatch._imported(pkg / "a.py") == {"", "b"} and parsed == ["a.py"]
+    dispatch._save_imports_cache()
+    new_process()
+    assert dispatch._imported(pkg / "a.py") == {"", "b"} and parsed == ["a.py"]      # from the file, not parsed
+    (pkg / "a.py").write_text("from . import c\n")
+    new_process()
+    assert dispatch._imported(pkg / "a.py") == {"", "c"} and parsed == ["a.py", "a.py"]
+    for f in (dispatch._imported, dispatch._imports_cache, dispatch._module_file, dispatch._exists):
+        f.cache_clear()   # the real package's caches again for the other tests
