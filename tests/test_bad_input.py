@@ -3,7 +3,6 @@
 The command line exits with status 2; scene and config errors name the file
 and the field before any computation starts.
 """
-import os
 import subprocess
 import sys
 from pathlib import Path

@@ -1,11 +1,9 @@
 """The numbers the README and docs/ quote are their outputs' (penetration.pipeline.docs): every generated block equals what
 the outputs committed at git HEAD give. This test checks the committed documents against the committed outputs."""
-from pathlib import Path
-
 import pytest
-from conftest import ROOT, committed, committed_files
+from conftest import committed, committed_files
 
-from penetration.pipeline.docs import BLOCK, BLOCKS, next_mesh_cost, render
+from penetration.pipeline.docs import BLOCK, next_mesh_cost, render
 
 DOCUMENTS = ["README.md"] + [p for p in committed_files("docs") if p.endswith(".md")]
 

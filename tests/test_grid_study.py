@@ -1,7 +1,6 @@
 """The erosion-free target's grid-convergence study on synthetic shots whose depths follow an exact error law:
 the study must recover each limit, order and the goals' verdicts (an independent oracle: the law itself)."""
 import numpy as np
-import pandas as pd
 import pytest
 
 from penetration.studies import grid as grid_study

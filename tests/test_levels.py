@@ -3,9 +3,6 @@ the sigma_n cache, the fe level's scaling with the projectile, and the command l
 import dataclasses
 import json
 import math
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
