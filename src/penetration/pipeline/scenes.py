@@ -20,19 +20,16 @@ import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..analytic.resistance import Target, strength_factor
 from ..analytic.trajectory import EFFECTS, EXCLUDES
 from ..concrete.effects import MATERIAL_EFFECTS
+from ..concrete.size import SizeEffect, sized_target
 from ..levels import WHAT
 from ..nose.geometry import Cone, Flat, MinimumNstar, Ogive, with_radius
 from . import config
-
-if TYPE_CHECKING:
-    from ..concrete.size import SizeEffect
 
 MAX_VELOCITIES = 1000
 # Effects of the finite-element level beyond the material's (fe.erosion_strain sets the criterion's value).
@@ -79,7 +76,6 @@ class Scene:
     def target_at(self, radius, velocity) -> Target:
         """The closed forms' target of a shot of this scene at nose ``radius`` and striking ``velocity``: S times
         the scale effect's factor at calibre 2 radius and V (concrete.size.resistance_factor), or the scene's."""
-        from ..concrete.size import sized_target
         return sized_target(self.target, self.size, 2.0 * radius, velocity)
 
 
@@ -285,7 +281,6 @@ def sized(scene: Scene, spec) -> Scene:
     variant, at = scene.size_variant, SIZE_LEVEL[scene.level]
     if variant not in spec["variants"]:
         raise SceneError(f"{where}: {variant!r}; allowed: one of {sorted(spec['variants'])} (scale_effect.variants)")
-    from ..concrete.size import SizeEffect   # here: it imports numba, which a Snakefile's parse does not need
     effect = SizeEffect.from_spec(spec["variants"][variant])
     if effect is None:
         raise SceneError(f"{where}: {variant!r} is the study's variant without the effect; allowed: drop effect size")
