@@ -31,7 +31,7 @@ def cluster_run(tmp_path_factory):
     submit.chmod(0o755)
     snakemake = Path(sys.executable).with_name("snakemake")
     res = subprocess.run([str(snakemake), "--executor", "cluster-generic", "--cluster-generic-submit-cmd", str(submit),
-                          "--jobs", "2", "--latency-wait", "5", *TARGETS], cwd=work, capture_output=True, text=True,
+                          "--jobs", "2", "--latency-wait", "5", "--seconds-between-status-checks", "1", *TARGETS], cwd=work, capture_output=True, text=True,
                          env={**os.environ, "PYTHONPATH": str(work / "src")}, timeout=1200)
     return work, res
 
