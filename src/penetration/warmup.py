@@ -9,7 +9,8 @@ Compiling is one core's work, and the FE step's kernels are two nearly equal hal
 model's first stable step already calls, and the node-side kernels (node pass, loads, contact, guide, move, next
 step). A helper process (``--helper``) compiles the second half on a tiny model of its own, then the cavity level's
 kernels, while this one compiles the first; the step and the cavity shot then find the helper's kernels in the cache.
-Without the helper (it failed, or one core) this process compiles them itself: the same kernels, only later.
+If the helper fails, this process compiles them itself: the same kernels, only later (on one core the two processes
+take turns: no faster, no slower than one).
 """
 from __future__ import annotations
 
