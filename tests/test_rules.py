@@ -44,24 +44,44 @@ def registered_tasks():
 
 CLOSURE_SCRIPT = """
 import importlib, json, os, sys
-import numpy, pandas, scipy.optimize, scipy.integrate, scipy.interpolate, matplotlib, numba, yaml, jsonschema
-out = {}
-for name in sys.argv[1:]:
+
+
+def in_child(work):
     r, w = os.pipe()
     pid = os.fork()
     if pid == 0:
         os.close(r)
-        importlib.import_module(name)
-        mods = sorted(k for k in sys.modules if k == "penetration" or k.startswith("penetration."))
-        os.write(w, json.dumps(mods).encode())
+        os.write(w, json.dumps(work()).encode())
         os._exit(0)
     os.close(w)
     data = b""
     while chunk := os.read(r, 65536):
         data += chunk
     os.waitpid(pid, 0)
-    out[name] = json.loads(data)
-print(json.dumps(out))
+    return json.loads(data)
+
+
+def others():
+    for name in sys.argv[1:]:
+        importlib.import_module(name)
+    return sorted(k for k in sys.modules if k.split(".")[0] != "penetration")
+
+
+# every other library the tasks load, loaded here once (what each child then imports of the package is unchanged:
+# a library never imports the package)
+for lib in in_child(others):
+    try:
+        importlib.import_module(lib)
+    except Exception:
+        pass
+
+
+def loaded(name):
+    importlib.import_module(name)
+    return sorted(k for k in sys.modules if k == "penetration" or k.startswith("penetration."))
+
+
+print(json.dumps({name: in_child(lambda: loaded(name)) for name in sys.argv[1:]}))
 """
 
 
