@@ -9,6 +9,7 @@ from penetration import warmup
 from penetration.fe import model as fe_model
 from penetration.fe import solver
 from penetration.fe.contact import contact
+from penetration.fe.erosion_free import rezone as remap
 from penetration.fe.nodes import external, guide, move, node_pass
 from penetration.fe.state import HISTORY, N_ACC, Record
 from penetration.fe.timestep import next_step
@@ -40,3 +41,5 @@ def test_the_helper_compiles_the_signatures_the_step_calls():
     _type(solver.advance, (st, proj, model.ctl, rec, 0.0, 1e-9, 1e-6, 0.5, 0, np.iinfo(np.int64).max))
     assert {k.py_func.__name__: list(k.signatures) for k in kernels} == helper
     assert fe_model.Model._initial_dt.__name__ == "_initial_dt"
+    # the erosion-free target's ejection and remap, called from Python as its time loop calls them (fe.model.rezone)
+    assert len(remap.eject.signatures) == 1 and len(remap.rezone.signatures) == 1

@@ -7,13 +7,15 @@ radius), which compiles and caches every kernel those levels call, and prints wh
 
 Compiling is one core's work, and the FE step's kernels are two nearly equal halves: the element pass, which the
 model's first stable step already calls, and the node-side kernels (node pass, loads, contact, guide, move, next
-step). A helper process (``--helper``) compiles the second half on a tiny model of its own, then the cavity level's
-kernels, while this one compiles the first; the step and the cavity shot then find the helper's kernels in the cache.
+step). A helper process (``--helper``) compiles the second half on a tiny model of its own, then the erosion-free
+target's remap and the cavity level's kernels, while this one compiles the first; the step and the cavity shot then
+find the helper's kernels in the cache.
 If the helper fails, this process compiles them itself: the same kernels, only later (on one core the two processes
 take turns: no faster, no slower than one).
 """
 from __future__ import annotations
 
+import dataclasses
 import subprocess
 import sys
 import tempfile
@@ -30,10 +32,10 @@ def _context():
     return UserShot(Ogive(3.0, 0.01), 0.05, 300.0, 48e6, 2440.0, 0.1), ctx
 
 
-def step_state(measure_first_step=True):
+def step_state(measure_first_step=True, formulation="eroding"):
     """The tiny shot's model as ``fe.solver.run`` hands it to the step: (model, State, the projectile's state array).
     Without ``measure_first_step`` the model's first stable step is not measured (a stand-in of 1 ns): measuring it
-    calls, hence compiles, the element pass."""
+    calls, hence compiles, the element pass. ``formulation``: the target's (fe.spec.FORMULATIONS)."""
     from .fe import model as fe_model
     from .fe import solver
     from .fe.contact import Projectile
@@ -46,7 +48,11 @@ def step_state(measure_first_step=True):
     if not measure_first_step:
         fe_model.Model._initial_dt = lambda self: 1e-9   # this throwaway model only
     try:
-        model = model_for(spec.nose, spec.settings, spec.target, spec.material, spec.expected_depth)
+        settings = spec.settings
+        if formulation == "erosion_free":   # no erosion criterion on that target
+            settings = dataclasses.replace(settings, controls=dataclasses.replace(settings.controls, erosion="none"))
+        model = model_for(spec.nose, settings, dataclasses.replace(spec.target, formulation=formulation),
+                          spec.material, spec.expected_depth)
     finally:
         fe_model.Model._initial_dt = measured
     zeta, rho = body_outline(spec.nose, spec.settings.body_length)
@@ -77,6 +83,8 @@ def node_kernels() -> None:
     contact(st.span, st.nodes, st.body, proj, dt)
     guide(st.span, st.nodes, bc.guide, dt)
     move(st.span, st.X, st.V, st.nodes.state, dt)
+    free, _, _ = step_state(measure_first_step=False, formulation="erosion_free")
+    free.rezone()   # the erosion-free target's ejection and remap, as its time loop calls them
 
 
 def main(argv=None) -> int:
