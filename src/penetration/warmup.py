@@ -57,10 +57,8 @@ def step_state(measure_first_step=True, formulation="eroding"):
         fe_model.Model._initial_dt = measured
     zeta, rho = body_outline(spec.nose, spec.settings.body_length)
     projectile = Projectile(zeta, rho, spec.mass, 0.0, spec.velocity, spec.friction)
-    st = solver.State(model.span(), model.nodes(), model.kind, model.q, model.boundary(), model.loads(),
-                      fe_model.body_of(projectile, model.r.size), model.E, model.F, model.alive, model.X, model.V,
-                      model.rows.f, model.rows.i)
-    return model, st, solver._projectile_state(model, projectile)
+    return (model, solver.state_of(model, fe_model.body_of(projectile, model.r.size)),
+            solver._projectile_state(model, projectile))
 
 
 def node_kernels() -> None:

@@ -119,6 +119,13 @@ class Result:
     dt_control: str = ""                # the last step's criterion and element
 
 
+def state_of(model, body):
+    """The step's view of ``model`` and the projectile's kernel view ``body`` (``body_of``): its arrays as they are
+    now (an erosion or a remap may replace them between calls of ``advance``)."""
+    return State(model.span(), model.nodes(), model.kind, model.q, model.boundary(), model.loads(), body, model.E,
+                 model.F, model.alive, model.X, model.V, model.rows.f, model.rows.i)
+
+
 class Unstable(RuntimeError):
     """A run stopped early: names the quantity, where and when."""
 
@@ -157,8 +164,7 @@ def run(model: Model, projectile: Projectile | None = None, callback=None):
         model.set_window(proj[B_TIP])
     audit.record(rec.acc, rec.ctrl, dt)
     while True:
-        st = State(model.span(), model.nodes(), model.kind, model.q, model.boundary(), model.loads(), body, model.E,
-                   model.F, model.alive, model.X, model.V, model.rows.f, model.rows.i)
+        st = state_of(model, body)
         k_pause = k + c.erosion_free.rezone_every if c.erosion_free else np.iinfo(np.int64).max
         code, dt, model.t, k_new = advance(st, proj, model.ctl, rec, model.t, dt,
                                            min(next_out + c.output_interval, c.end_time), c.dt_factor, k, k_pause)

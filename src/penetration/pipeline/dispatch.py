@@ -71,7 +71,6 @@ def _parsed_imports(path: Path, source: str) -> list[str]:
 # the Snakefile, which asks for the closures of its tasks: parsing some 150 modules costs seconds, reading their
 # digests milliseconds). A derived file beside the compiled modules; a module whose text changed is parsed again.
 IMPORTS_CACHE = PACKAGE / "__pycache__" / "pipeline_imports.json"
-_DIRTY: list = []
 
 
 @functools.lru_cache(maxsize=None)
@@ -96,6 +95,12 @@ def _save_imports_cache() -> None:
 
 
 @functools.lru_cache(maxsize=None)
+def _save_at_exit() -> None:
+    """Write the cache once, whole, when the process ends (called at each module parsed anew; registers once)."""
+    atexit.register(_save_imports_cache)
+
+
+@functools.lru_cache(maxsize=None)
 def _imported(path: Path) -> frozenset[str]:
     """Dotted names (relative to the package) of the package modules that ``path`` imports, anywhere in it.
 
@@ -107,9 +112,7 @@ def _imported(path: Path) -> frozenset[str]:
     entry = cache.get(key)
     if not (isinstance(entry, list) and len(entry) == 2 and entry[0] == digest):
         entry = cache[key] = [digest, _parsed_imports(path, text.decode())]
-        if not _DIRTY:
-            _DIRTY.append(True)
-            atexit.register(_save_imports_cache)   # once, whole, when the process ends
+        _save_at_exit()
     return frozenset(m for m in entry[1] if _exists(m))
 
 

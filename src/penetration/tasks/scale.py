@@ -11,12 +11,12 @@ from ..concrete.size import SizeEffect
 from ..figures.scale import similarity_figure
 from ..nose.geometry import Ogive
 from ..paper import reference
+from ..pipeline.config import scale_grid
 from ..pipeline.io import read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
 from ..shots.records import context_from_files, with_scale_effect
 from ..studies.laboratory import FITTED, Protocol
 from ..studies.fe_results import CONTRASTS
-from ..pipeline.config import scale_grid
 from ..studies.scale import split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
 from .laboratory import calibrate_on_laboratory, grid_runs_from, grid_runs_from_table, write_grid_piece
