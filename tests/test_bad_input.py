@@ -85,7 +85,9 @@ def test_predict_rows_with_extra_or_missing_fields_are_skipped_without_leftovers
 
 def test_predict_unwritable_out_is_blamed_on_out(tmp_path):
     path = shots_file(tmp_path, f"{header()}\n{good_row()}\n")
-    out = cli("predict", str(path), "--out", str(tmp_path / "missing" / "dir" / "x.csv" / "y.csv"))
+    deep = tmp_path / "missing" / "dir" / "x.csv" / "y.csv"
+    out = cli("predict", str(path), "--out", str(deep))      # missing folders are made, not blamed
+    assert out.returncode == 0 and len(deep.read_text().splitlines()) == 2, out.stderr
     blocked = tmp_path / "blocked"
     blocked.write_text("a file, not a directory")
     out = cli("predict", str(path), "--out", str(blocked / "out.csv"))

@@ -109,3 +109,22 @@ def test_the_trajectory_level_takes_the_analytic_levels_calibration_and_validati
 def test_an_unknown_variant_is_refused_naming_the_allowed_ones():
     out = run_cli("dop", *SHOT, "--size", "tides")
     assert out.returncode == 2 and "--size" in out.stderr and "rate_fracture" in out.stderr
+
+
+def test_a_variant_that_meets_every_goal_is_the_default_and_its_depth_is_that_variants(tmp_path):
+    """Under a --root whose analytic validation has the rate variant meet every goal of studies.scale.GOALS (the
+    committed validation has none that does), the default answer is the rate variant's, with its accuracy line."""
+    shutil.copytree(ROOT / "workflow", tmp_path / "workflow")
+    shutil.copytree(ROOT / "figures", tmp_path / "figures")
+    path = tmp_path / "figures/scale/validation_analytic.csv"
+    table = pd.read_csv(path)
+    rate = table.variant == "rate"
+    table.loc[rate, ["loso_median_abs_rel_err", "loso_p90_abs_rel_err", "split_ratio", "do1_rel_error"]] = \
+        [0.05, 0.15, 1.05, -0.04]
+    table.to_csv(path, index=False)
+    root = ("--root", str(tmp_path))
+    default = json.loads(run_cli("dop", *SHOT, *root, "--json").stdout)
+    rate_run = json.loads(run_cli("dop", *SHOT, *root, "--size", "rate", "--json").stdout)
+    plain = json.loads(run_cli("dop", *SHOT, *root, "--size", "none", "--json").stdout)
+    assert "scale effect rate (it meets every goal" in default["validated_accuracy"]
+    assert default["depth_m"] == rate_run["depth_m"] != plain["depth_m"]

@@ -42,14 +42,21 @@ def test_an_fe_shot_writes_histories_and_fields(tmp_path):
     assert np.sum(dec * np.gradient(t)) == pytest.approx(lost, rel=0.05)
     vtus = sorted((tmp_path / "f").glob("*.vtu"))
     assert len(vtus) == 2 and vtus[0].name == "fields_end.vtu" and vtus[1].name.startswith("fields_t0.")
+    reach = {}
     for p in vtus:
         m = meshio.read(p)
-        d = m.cell_data["damage"][0]
-        assert len(d) == len(m.cells_dict["quad"]) and 0.0 <= d.min() and d.max() <= 1.0 + 1e-12
+        d, quads = m.cell_data["damage"][0], m.cells_dict["quad"]
+        assert len(d) == len(quads)
         assert set(np.unique(m.cell_data["state"][0])) <= {0.0, 1.0, 2.0, 3.0, 4.0, 5.0}
         assert p.with_suffix(".png").stat().st_size > 20_000
+        r, z = (m.points[quads, k].mean(axis=1) for k in (0, 1))     # element centres (z into the target)
+        reach[p.name] = (r[d > 0.5].max(), z[d > 0.5].max())
     end = meshio.read(tmp_path / "f/fields_end.vtu")
     assert (end.cell_data["damage"][0] > 0.99).any()        # the tunnel's wall is crushed
+    # the damaged zone: wider than the shank (radius 12.5 mm), ahead of the nose's final depth, deeper at the end
+    # than at 0.3 ms (the damage field, not another of the element rows)
+    z_early, (r_end, z_end) = reach[vtus[1].name][1], reach["fields_end.vtu"]
+    assert r_end > 0.0125 and z_end > rec["depth_m"] > z_early
 
 
 def test_fields_refused_before_any_run(tmp_path):

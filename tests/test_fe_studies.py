@@ -202,7 +202,14 @@ def test_window_summary_is_welchs_difference_relative_to_the_whole_domain():
     w, f = [5.00, 5.02, 5.04], [5.01, 5.03, 5.05, 5.02]
     runs = pd.DataFrame({"domain": ["window"] * 3 + ["whole"] * 4, "depth_m": w + f})
     s = S.window_summary(runs, 0.9, 1.0)
-    d, lo, hi = S.welch(f, w, 0.9)
-    mf = sum(f) / 4
-    assert s["difference_pct"] == pytest.approx(100 * d / mf) and s["interval_low_pct"] == pytest.approx(100 * lo / mf)
+    # Welch by hand: the window's mean minus the whole domain's, +- t(0.95, Welch-Satterthwaite dof) times the
+    # standard error of the difference
+    from scipy.stats import t as student
+    mw, mf = sum(w) / 3, sum(f) / 4
+    vw, vf = (sum((x - mw) ** 2 for x in w) / 2 / 3, sum((x - mf) ** 2 for x in f) / 3 / 4)
+    dof = (vw + vf) ** 2 / (vw**2 / 2 + vf**2 / 3)
+    d, half = mw - mf, student.ppf(0.95, dof) * math.sqrt(vw + vf)
+    assert s["difference_pct"] == pytest.approx(100 * d / mf, rel=1e-9)
+    assert s["interval_low_pct"] == pytest.approx(100 * (d - half) / mf, rel=1e-9)
+    assert s["interval_high_pct"] == pytest.approx(100 * (d + half) / mf, rel=1e-9)
     assert s["within_goal"] and not S.window_summary(runs, 0.9, 0.1)["within_goal"]

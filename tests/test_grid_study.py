@@ -172,14 +172,21 @@ def test_without_a_limit_the_hole_rows_give_the_range_of_every_value():
         vals = g[[c for c in g.columns if c.startswith("value_at_")]].to_numpy().ravel()
         assert r.values == 12 and r.values_min == vals.min() and r.values_max == vals.max()
         assert r.values_median == pytest.approx(np.median(vals), rel=1e-15)
-        assert r.limit_found == bool(np.isfinite(r.uncertainty) and np.isfinite(r.at_zero_hole))
     assert not holes.limit_found.all()          # the scatter defeats the refinement somewhere
     ratios = holes[holes.quantity == "depth_ratio"]
-    assert (ratios[~ratios.limit_found].ranking == "undecided").all()
-    # the scatter widens the least-squares intervals: a hull that reaches below 1 leaves the ranking undecided
+    # a ranking is a side of 1 that the whole zero-hole interval lies on; without a limit there is none
     for r in ratios.itertuples():
-        assert r.ls_ranking == ("holds at every hole" if r.ls_low > 1 else "fails at every hole" if r.ls_high < 1
-                                else "undecided")
+        low, high = r.at_zero_hole - r.uncertainty, r.at_zero_hole + r.uncertainty
+        expected = (("holds" if low > 1 else "fails" if high < 1 else "undecided") if r.limit_found else "undecided")
+        assert r.ranking == expected, r
+    # the least-squares ranking from each hole's own interval (the convergence rows, not the hull): above 1 at every
+    # hole, below at every hole, or undecided
+    for r in ratios.itertuples():
+        g = conv[(conv.quantity == r.quantity) & (conv.case == r.case) & (conv.velocity_ms == r.velocity_ms)]
+        lows, highs = g.ls_value - g.ls_uncertainty, g.ls_value + g.ls_uncertainty
+        expected = ("holds at every hole" if (lows > 1).all() else "fails at every hole" if (highs < 1).all()
+                    else "undecided")
+        assert r.ls_ranking == expected, r
     assert (ratios.ls_high - ratios.ls_low > ratios.values_max - ratios.values_min).all()
     # an infinite band holds no paper value, though the paper's (the law's limits here) lie within it
     inf_band = holes[np.isinf(holes.uncertainty) & np.isfinite(holes.at_zero_hole)]

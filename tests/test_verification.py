@@ -98,3 +98,8 @@ def test_a_change_that_is_exactly_zero_is_caught():
     assert not identical(near("p", "q", 2.0, 2.0, 0.01, "1", "exact in the discrete algebra"))
     assert not identical(below("p", "q", 0.0, 1e-9, "1", "conservation (round-off)"))
     assert not identical(below("p", "q", 1e-17, 1e-9, "1", "conservation"))
+    # a source that names an exact solution, or says a scheme is not exactly conservative, claims no exactness
+    assert identical(near("p", "q", 2.0, 2.0, 0.01, "1", "exact linear-elastic solution (outgoing spherical wave)"))
+    assert identical(below("p", "q", 0.0, 0.01, "1", "conservation (small: the remap is not exactly conservative)"))
+    assert not identical(below("p", "q", 0.0, 1e-9, "1", "0 (round-off of the positions)"))
+    assert not identical(below("p", "q", 0.0, 1e-9, "1", "0 exactly: nothing is deleted (exact)"))
