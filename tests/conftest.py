@@ -1,3 +1,4 @@
+import math
 import os
 import sys
 from pathlib import Path
@@ -57,3 +58,27 @@ def run_cli(*args, cwd=ROOT):
         for s, h in handlers.items():
             signal.signal(s, h)
     return subprocess.CompletedProcess(list(args), code, out.getvalue(), err.getvalue())
+
+
+# Oracles written out by hand (independent of the package's own formulas), shared by the tests that need them.
+
+def v1_squared_by_hand(mass, radius, nstar, rho, resistance, velocity):
+    """Forrestal's squared velocity at the crater's end (z = 4a), with its a^3 terms: (m V^2 - 4 pi a^3 S fc) /
+    (m + 4 pi a^3 N* rho); ``resistance`` is S fc in Pa."""
+    k = 4 * math.pi * radius**3
+    return (mass * velocity**2 - k * resistance) / (mass + k * nstar * rho)
+
+
+def eq9_by_hand(mass, radius, nstar, rho, resistance, velocity):
+    """Eq 9's depth (m) for a shot past the crater: m / (2 pi a^2 rho N*) ln(1 + N* rho V1^2 / (S fc)) + 4a."""
+    v1sq = v1_squared_by_hand(mass, radius, nstar, rho, resistance, velocity)
+    return mass / (2 * math.pi * radius**2 * rho * nstar) * math.log(1 + nstar * rho * v1sq / resistance) + 4 * radius
+
+
+def recorded_work(tr, mass):
+    """The work of a trajectory's recorded deceleration history over its recorded path, m * integral of a dz
+    (trapezoid over the samples, 200 a smooth piece: about 2e-4 relative). The integrator's own work state,
+    W' = F v beside v' = -F/m, equals m vs^2 / 2 for any force law, so it checks nothing but the integration; the
+    recorded history is computed from the effects afresh, and misses the kinetic energy if it drops or misstates one."""
+    import numpy as np
+    return mass * np.trapezoid(tr.deceleration, tr.z)

@@ -2,6 +2,7 @@
 import numpy as np
 import pytest
 
+from conftest import recorded_work
 from penetration.analytic.dop import penetration_depth
 from penetration.analytic.resistance import Target
 from penetration.cavity.level import SigmaTable, cavity_trajectory
@@ -72,8 +73,7 @@ def test_hjc_level_finite_monotone_and_energy_closed_from_30_to_2500(hjc_table, 
     for vs in (30.0, 100.0, 250.0, 500.0, 1000.0, 1500.0, 2000.0, 2500.0):
         tr = cavity_trajectory(nose, 81.1, vs, hjc_table, effects, rtol=1e-8)
         assert np.isfinite(tr.depth) and tr.depth > 0
-        # the recorded deceleration history's work over the path (the integrator's work state closes for any force)
-        assert 81.1 * np.trapezoid(tr.deceleration, tr.z) == pytest.approx(0.5 * 81.1 * vs**2, rel=1e-3)
+        assert recorded_work(tr, 81.1) == pytest.approx(0.5 * 81.1 * vs**2, rel=1e-3)
         depths.append(tr.depth)
     assert np.all(np.diff(depths) > 0)
 

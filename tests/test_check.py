@@ -272,7 +272,7 @@ def test_the_fe_classes_hold_the_difference_of_two_builds(new_build, old_build):
     rescaled |= rebuilt
     # and so did every study rebuilt with the current solver since: the studies without a built_with note in
     # workflow/studies.yaml (the note says a study's outputs are an older code's, and comes off when it is rebuilt)
-    rescaled |= {f for f in files if f in rebuilt_study_outputs(root)}
+    rescaled |= set(files) & rebuilt_study_outputs(root)
     compared = 0
     for path in files:
         if old_build is None and path in rescaled:

@@ -73,9 +73,6 @@ def test_predict_reports_bad_rows_and_writes_good_ones(tmp_path):
     rows = list(csv.DictReader(open(out)))
     assert [r["shot_id"] for r in rows] == ["A", "D"] and rows[0]["extra"] == "keep"
     # independent check of row A: Eq 9 by hand with S = 72 fc^-0.5 and N* = (8*2-1)/(24*4)
-    import math
-    m, a, rho, fc, v = 0.9, 0.01345, 2370.0, 32.4e6, 800.0
-    S, n = 72 * 32.4**-0.5, 15 / 96
-    v1 = (m * v**2 - 4 * math.pi * a**3 * S * fc) / (m + 4 * math.pi * a**3 * n * rho)
-    p = m / (2 * math.pi * a**2 * rho * n) * math.log(1 + n * rho * v1 / (S * fc)) + 4 * a
+    from conftest import eq9_by_hand
+    p = eq9_by_hand(0.9, 0.01345, 15 / 96, 2370.0, 72 * 32.4**-0.5 * 32.4e6, 800.0)
     assert float(rows[0]["dop_pred_m"]) == pytest.approx(p, rel=1e-5)

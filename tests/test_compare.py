@@ -19,10 +19,10 @@ def cli(*args):
 def _dop(nstar, velocity, law="li_chen"):
     """Eq 9 by hand for SHOT (0.5 kg, 25 mm, 40 MPa, the default concrete density 2440 kg/m^3): S = 72 fc^-0.5
     (Li & Chen) or 82.6 fc^-0.544 (Frew et al.), fc in MPa; Forrestal's V1^2 with its a^3 terms."""
-    m, a, fc, rho = 0.5, 0.0125, 40.0, 2440.0
+    from conftest import eq9_by_hand
+    fc = 40.0
     R = (72 * fc**-0.5 if law == "li_chen" else 82.6 * fc**-0.544) * fc * 1e6
-    v1sq = (m * velocity**2 - 4 * math.pi * a**3 * R) / (m + 4 * math.pi * a**3 * nstar * rho)
-    return m / (2 * math.pi * a**2 * rho * nstar) * math.log(1 + nstar * rho * v1sq / R) + 4 * a
+    return eq9_by_hand(0.5, 0.0125, nstar, 2440.0, R, velocity)
 
 
 CRH3, CONE = (8 * 3 - 1) / (24 * 3**2), 0.0125**2 / (0.0125**2 + 0.06**2)   # N* of an ogive, of a cone (sin^2)

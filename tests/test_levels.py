@@ -186,8 +186,8 @@ def test_dop_json_is_the_closed_form():
     from scipy.integrate import solve_ivp
     m, a, fc, rho, vs, n = 81.1, 0.07, 48e6, 2440.0, 835.0, 23 / 216
     R = 72 * 48**-0.5 * fc
-    v1sq = (m * vs**2 - 4 * math.pi * a**3 * R) / (m + 4 * math.pi * a**3 * n * rho)
-    depth = m / (2 * math.pi * a**2 * rho * n) * math.log(1 + n * rho * v1sq / R) + 4 * a
+    from conftest import eq9_by_hand, v1_squared_by_hand
+    v1sq, depth = v1_squared_by_hand(m, a, n, rho, R, vs), eq9_by_hand(m, a, n, rho, R, vs)
     c = math.pi * a**2 * (R + n * rho * v1sq) / (4 * a)
     force = lambda z, v: c * z if z < 4 * a else math.pi * a**2 * (R + n * rho * v * v)
     rest = lambda t, y: y[1]

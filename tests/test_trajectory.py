@@ -4,6 +4,7 @@ import math
 import numpy as np
 import pytest
 
+from conftest import recorded_work
 from penetration.analytic.dop import penetration_depth
 from penetration.analytic.resistance import (Target, double_ogive_force_eq11, forrestal_stress, nose_force,
                                              nose_surface, tunnel_force)
@@ -15,14 +16,6 @@ from penetration.nose.nstar import nstar
 TG = Target(2440.0, 48e6, 6.69)
 FORRESTAL = ("crater", "static", "inertial")
 DO = DoubleOgive(0.07, S1=0.8576, S2=0.42, a1=0.0397, a2=0.0638, alpha=0.245)
-
-
-def recorded_work(tr, mass=81.1):
-    """The work of the recorded deceleration history over the recorded path, m * integral of a dz (trapezoid over the
-    samples, 200 a smooth piece: about 2e-4 relative). The integrator's own work state, W' = F v beside v' = -F/m,
-    equals m vs^2 / 2 for any force law, so it checks nothing but the integration; the recorded history is computed
-    from the effects afresh, and misses the kinetic energy if it drops or misstates one."""
-    return mass * np.trapezoid(tr.deceleration, tr.z)
 
 
 def run(nose, vs, effects=FORRESTAL, mass=81.1, rtol=1e-10, **kw):
@@ -37,7 +30,7 @@ def test_reproduces_eq9_and_conserves_energy(nose, vs):
     tr = run(nose, vs)
     exact = float(penetration_depth(81.1, 0.07, nstar(nose), TG, vs))
     assert tr.depth == pytest.approx(exact, rel=1e-6)
-    assert recorded_work(tr) == pytest.approx(0.5 * 81.1 * vs**2, rel=1e-3)
+    assert recorded_work(tr, 81.1) == pytest.approx(0.5 * 81.1 * vs**2, rel=1e-3)
 
 
 def test_error_falls_with_tolerance():
@@ -87,7 +80,7 @@ def test_nose_entry_friction_and_ramp_are_consistent():
     assert base.depth < entry.depth < ramp.depth
     assert fric.depth < entry.depth
     for tr in (entry, fric, ramp):
-        assert recorded_work(tr) == pytest.approx(0.5 * 81.1 * 800.0**2, rel=1e-3)
+        assert recorded_work(tr, 81.1) == pytest.approx(0.5 * 81.1 * 800.0**2, rel=1e-3)
 
 
 def test_effect_errors_name_the_field():
