@@ -119,6 +119,27 @@ def test_split_summary_reads_each_series_fit_and_pools_the_held_out_errors():
     assert row.mean_rel_err_a == pytest.approx(-0.1) and row.do1_pred_m == 4.0
 
 
+def test_do1_gap_gives_each_step_as_a_ratio_and_a_power_of_calibre():
+    """Hand values: a factor 1.0 at 20 mm, 0.5 at 80 mm and 0.25 at 320 mm halves with each fourfold calibre, a power
+    -1/2 on both steps; Bazant's law over the same calibres is its closed form (1 + d/D0)^(-1/2) by hand."""
+    from penetration.studies.scale import do1_gap
+    points = {"b": (0.08, 300.0), "a": (0.02, 600.0), "do1": (0.32, 800.0)}
+    effect = SizeEffect(mechanisms=("fracture",), aggregate=0.016, lambda0=25.0)
+    bazant = {p: (1 + d / 0.4) ** -0.5 for p, (d, _) in points.items()}
+    values = [{"kind": "level", "name": "x", "value_a": 1.0, "value_b": 0.5, "value_do1": 0.25},
+              {"kind": "mechanism", "name": "fracture",
+               **{f"value_{p}": float(resistance_factor(effect, d, v)) for p, (d, v) in points.items()}}]
+    out = do1_gap(values, points).set_index("name")
+    assert out.loc["x", "ratio_series"] == pytest.approx(0.5) and out.loc["x", "ratio_do1"] == pytest.approx(0.5)
+    assert out.loc["x", "exponent_series"] == pytest.approx(-0.5) and out.loc["x", "exponent_do1"] == pytest.approx(-0.5)
+    assert out.loc["x", "series_trend_at_do1"] == pytest.approx(0.25)
+    assert out.loc["fracture", "ratio_do1"] == pytest.approx(bazant["do1"] / bazant["b"], rel=1e-12)
+    assert out.loc["fracture", "ratio_series"] == pytest.approx(bazant["b"] / bazant["a"], rel=1e-12)
+    assert out.loc["x", "calibre_a_m"] == 0.02 and out.loc["x", "velocity_do1_ms"] == 800.0
+    with pytest.raises(ValueError, match="two laboratory series"):
+        do1_gap(values, {"a": (0.02, 1.0), "do1": (0.32, 1.0)})
+
+
 def test_the_fe_level_applies_the_crack_band_at_its_scaled_element_size():
     from penetration.concrete.size import crack_band_strain
     from penetration.shots.ladder import fe_material, fe_spec

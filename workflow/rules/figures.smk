@@ -487,3 +487,20 @@ rule scale_table3:
     benchmark: "results/benchmarks/scale_table3.tsv"
     log: "results/logs/scale_table3.log",
     script: "../scripts/run_task.py"
+
+
+# How much calibre dependence DO1 asks of each level (a study, seconds): each level's factor fitted on each laboratory
+# series alone beside its calibration on DO1 (the fe level's at the study's mesh), and the factor on the resistance that
+# each mechanism of the scale effect gives at the series' and DO1's calibres and velocities.
+rule scale_do1_gap:
+    input: **task("tasks.scale"), shots=config["validation"]["shots"], reference=config["reference"],
+           calibrations=[f"figures/scale/calibration_{level}.csv" for level in SCALE["levels"]],
+           analytic="results/calibration/do1.json", cavity="results/calibration/cavity_do1.json",
+           fe=f"figures/fe/{SCALE_FE_PROFILE}/calibration_fe_do1.csv",
+    output: csv="figures/scale/do1_gap.csv",
+    params: cfg=cfg_slice("validation", "scale_effect"), shot=config["calibration"]["do1"],
+    threads: 1
+    resources: mem_mb=1000, runtime=10
+    benchmark: "results/benchmarks/scale_do1_gap.tsv"
+    log: "results/logs/scale_do1_gap.log",
+    script: "../scripts/run_task.py"

@@ -63,3 +63,30 @@ def recommended_variant(rows):
     the effect that meet every goal, the one of the smallest held-out median |error|; None where none does."""
     best = best_variant([r for r in rows if r["variant"] != "none" and all(goals_met(r).values())])
     return best["variant"] if best else None
+
+
+def do1_gap(values, points, do1_point="do1"):
+    """How much calibre dependence DO1 asks of a level, beside what the laboratory series show and what each published
+    mechanism supplies. ``values``: one row per source (a dict with ``kind`` level or mechanism, ``name``,
+    ``quantity`` and its value at each point, ``value_POINT``); ``points``: point name -> (calibre m, velocity m/s),
+    the laboratory series in any order and ``do1_point``. Per row: the ratio of the value at the larger series
+    calibre over the smaller (``ratio_series``), DO1's over the larger series' (``ratio_do1``), each as a power of
+    calibre (``exponent_series``, ``exponent_do1``: ln ratio / ln calibre ratio), and the larger series' value
+    carried to DO1's calibre by the series' power (``series_trend_at_do1``)."""
+    series = sorted((p for p in points if p != do1_point), key=lambda p: points[p][0])
+    if len(series) != 2:
+        raise ValueError(f"do1_gap needs two laboratory series, got {series}")
+    small, large = series
+    d_small, d_large, d_do1 = points[small][0], points[large][0], points[do1_point][0]
+    rows = []
+    for v in values:
+        a, b, c = (float(v[f"value_{p}"]) for p in (small, large, do1_point))
+        ratio_series, ratio_do1 = b / a, c / b
+        exponent_series = np.log(ratio_series) / np.log(d_large / d_small)
+        rows.append({**v, "ratio_series": ratio_series, "ratio_do1": ratio_do1, "exponent_series": exponent_series,
+                     "exponent_do1": np.log(ratio_do1) / np.log(d_do1 / d_large),
+                     "series_trend_at_do1": b * (d_do1 / d_large) ** exponent_series})
+    out = pd.DataFrame(rows)
+    for p in (small, large, do1_point):
+        out[f"calibre_{p}_m"], out[f"velocity_{p}_ms"] = points[p]
+    return out

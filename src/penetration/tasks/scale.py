@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from ..analytic.empirical import EMPIRICAL_DEPTHS, NDRC_NOSE_FACTORS
-from ..concrete.size import SizeEffect
+from ..concrete.size import SizeEffect, resistance_factor
 from ..figures.scale import similarity_figure
 from ..nose.geometry import Ogive
 from ..paper import reference
@@ -17,7 +17,7 @@ from ..shots.ladder import UserShot, run
 from ..shots.records import context_from_files, with_scale_effect
 from ..studies.laboratory import FITTED, Protocol
 from ..studies.fe_results import CONTRASTS
-from ..studies.scale import split_summary
+from ..studies.scale import do1_gap, split_summary
 from .common import PLAIN, do1_shot, scene_from_inputs
 from .laboratory import calibrate_on_laboratory, grid_runs_from, grid_runs_from_table, write_grid_piece
 
@@ -179,3 +179,52 @@ def scale_cavity_grid_value(inputs, outputs, params):
     effect (a piece, committed: a variant's grid takes about half an hour, so the study runs over sessions)."""
     write_grid_piece(inputs, outputs, params, SizeEffect.from_spec(params.cfg["scale_effect"]["variants"][params.variant]),
                      level="cavity")
+
+
+# the DO1 calibration of each level as the paper build records it: (the record's key of the value, what it is)
+DO1_FACTOR = {"analytic": ("S_ratio_to_stated", "factor on Li & Chen's S"),
+              "cavity": ("strength_scale", "HJC strength scale"),
+              "fe": ("value", "failure strain fs (a larger fs: a tougher target)")}
+
+
+@task
+def scale_do1_gap(inputs, outputs, params):
+    """How much calibre dependence DO1 asks of each level: the level's one factor fitted on each laboratory series
+    alone (variant none of scale_validation) beside the factor its DO1 calibration needs, and the factor on the
+    resistance that each mechanism of the scale effect gives at the two series' calibres and velocities (their
+    medians) and at DO1's: a diagnosis from calibrations, no prediction."""
+    import json
+    cfg = params.cfg
+    series = cfg["validation"]["laboratory"]["series"]
+    shots = pd.read_csv(inputs.shots)
+    points = {}
+    for name, text in series.items():
+        mine = shots[shots.source.str.contains(text, regex=False)]
+        if mine.diameter_m.nunique() != 1:
+            raise ValueError(f"{inputs.shots}: series {name} has calibres {sorted(mine.diameter_m.unique())}; "
+                             "the gap needs one calibre per series")
+        points[name] = (float(mine.diameter_m.iloc[0]), float(mine.velocity_ms.median()))
+    refs = reference.load_reference(inputs.reference)
+    _, vs, _ = do1_shot(refs, params.shot)
+    points["do1"] = (refs["table2.diameter"].si, vs)
+    records = {"analytic": json.load(open(inputs.analytic)), "cavity": json.load(open(inputs.cavity)),
+               "fe": pd.read_csv(inputs.fe).iloc[0].to_dict()}
+    values = []
+    for path in inputs.calibrations:
+        fits = pd.read_csv(path)
+        fits = fits[fits.variant == "none"]
+        level = fits.level.iloc[0]
+        key, quantity = DO1_FACTOR[level]
+        by_series = {s: float(fits.loc[fits.fit_series == s, "value"].iloc[0]) for s in series}
+        values.append({"kind": "level", "name": level, "quantity": quantity,
+                       **{f"value_{s}": v for s, v in by_series.items()}, "value_do1": float(records[level][key]),
+                       "do1_value_from": f"{level}'s calibration on DO1"})
+    for name, spec in cfg["scale_effect"]["variants"].items():
+        effect = SizeEffect.from_spec(spec)
+        if effect is None:
+            continue
+        values.append({"kind": "mechanism", "name": name, "quantity": "factor on the resistance at V/d ("
+                       + "+".join(effect.mechanisms) + ")",
+                       **{f"value_{p}": float(resistance_factor(effect, d, v)) for p, (d, v) in points.items()},
+                       "do1_value_from": "the published relation at DO1's calibre and velocity"})
+    write_csv(do1_gap(values, points), outputs.csv)
