@@ -12,7 +12,7 @@ from ..figures.scale import similarity_figure
 from ..nose.geometry import Ogive
 from ..paper import reference
 from ..pipeline.config import scale_grid
-from ..pipeline.io import read_inference, read_rows, task, write_csv
+from ..pipeline.io import load_json, read_inference, read_rows, task, write_csv
 from ..shots.ladder import UserShot, run
 from ..shots.records import context_from_files, with_scale_effect
 from ..studies.laboratory import FITTED, Protocol
@@ -193,13 +193,14 @@ def scale_do1_gap(inputs, outputs, params):
     alone (variant none of scale_validation) beside the factor its DO1 calibration needs, and the factor on the
     resistance that each mechanism of the scale effect gives at the two series' calibres and velocities (their
     medians) and at DO1's: a diagnosis from calibrations, no prediction."""
-    import json
     cfg = params.cfg
-    series = cfg["validation"]["laboratory"]["series"]
+    protocol = Protocol.from_config(cfg["validation"]["laboratory"])
+    series = protocol.series
     shots = pd.read_csv(inputs.shots)
+    shots["series"] = shots.source.map(protocol.series_of)
     points = {}
-    for name, text in series.items():
-        mine = shots[shots.source.str.contains(text, regex=False)]
+    for name in series:
+        mine = shots[shots.series == name]
         if mine.diameter_m.nunique() != 1:
             raise ValueError(f"{inputs.shots}: series {name} has calibres {sorted(mine.diameter_m.unique())}; "
                              "the gap needs one calibre per series")
@@ -207,7 +208,7 @@ def scale_do1_gap(inputs, outputs, params):
     refs = reference.load_reference(inputs.reference)
     _, vs, _ = do1_shot(refs, params.shot)
     points["do1"] = (refs["table2.diameter"].si, vs)
-    records = {"analytic": json.load(open(inputs.analytic)), "cavity": json.load(open(inputs.cavity)),
+    records = {"analytic": load_json(inputs.analytic), "cavity": load_json(inputs.cavity),
                "fe": pd.read_csv(inputs.fe).iloc[0].to_dict()}
     values = []
     for path in inputs.calibrations:
