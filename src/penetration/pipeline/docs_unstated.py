@@ -80,3 +80,34 @@ def table3_window(read) -> str:
 
 
 BLOCKS["table3_window"] = table3_window
+
+
+def do1_window(read) -> str:
+    """The moving window against the whole domain on DO1 (study fe_window): the mean depths, their difference with
+    its interval and verdict, and the same test on the first half of the realisations alone."""
+    summary = _rows(read, "figures/fe/full/window_summary.csv")
+    if not summary:
+        return "The DO1 window study (`fe_window`) has not run yet.\n"
+    r = summary[0]
+    n = int(r["realisations"])
+    verdict = "it passes" if r["within_goal"] == "True" else "it does not pass"
+    text = (f"The window's mean depth over {n} realisations is {_num(r['mean_window_m']):.3f} m against the whole "
+            f"domain's {_num(r['mean_whole_m']):.3f} m, {_num(r['difference_pct']):+.2f} % "
+            f"({100 * _num(r['confidence']):.0f} % interval {_num(r['interval_low_pct']):+.2f} to "
+            f"{_num(r['interval_high_pct']):+.2f} %): {verdict}")
+    runs = _rows(read, "figures/fe/full/window.csv")
+    half = n // 2
+    if runs and half >= 2:
+        import pandas as pd
+
+        from ..studies.fe_results import window_summary
+
+        frame = pd.DataFrame(runs).astype({"member": int, "depth_m": float})
+        h = window_summary(frame[frame.member < half], _num(r["confidence"]), _num(r["goal_pct"]))
+        text += (f"; the first {half} realisations of each alone give {h['difference_pct']:+.2f} % "
+                 f"({h['interval_low_pct']:+.2f} to {h['interval_high_pct']:+.2f} %, "
+                 f"{'within' if h['within_goal'] else 'not within'} +-{_num(r['goal_pct']):g} %)")
+    return text + " (`figures/fe/full/window_summary.csv`, `window.csv`).\n"
+
+
+BLOCKS["do1_window"] = do1_window
