@@ -561,6 +561,18 @@ def rear_face(read) -> str:
                      f"{float(r['interval_high_m']):+.3f} |")
     lines += ["", f"({t[0]['realisations']} realisations per target, {100 * float(e[0]['confidence']):.0f} % Welch "
               "intervals; `figures/fe/rear_face.csv`, `rear_face_effects.csv`)"]
+    block = t[-1]
+    members = [r for r in _rows(read, "figures/fe/rear_face_members.csv") if r["scene"] == block["scene"]]
+    if members:
+        bottom = float(block["bottom_depth_m"])
+        short = [bottom - float(r["depth_m"]) for r in members if r["status"] == "rest"]
+        through = sum(r["status"] == "perforated" for r in members)
+        moving = sum(r["status"] == "end_time" for r in members)
+        text = f"In the block ({block['scene']}, {bottom:g} m deep), {len(short)} of {len(members)} realisations came to rest"
+        text += f", {min(short):.2f}-{max(short):.2f} m short of its rear face" if short else ""
+        text += f"; {through} perforated it or bulged through it" if through else ""
+        text += f"; {moving} still moved at the run's end" if moving else ""
+        lines += ["", text + " (`figures/fe/rear_face_members.csv`)."]
     return "\n".join(lines) + "\n"
 
 
