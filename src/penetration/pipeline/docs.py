@@ -205,6 +205,50 @@ def fe_limit(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def fe_band_means(read) -> str:
+    """The eroding FE level's band means minus the paper's simulated ratios (points), over Table 3's velocities."""
+    rows = _rows(read, "figures/fe/contrast_band.csv")
+    bands = list(dict.fromkeys((r["band"], r["centre_elements_across"]) for r in rows))
+    sizes = {b: [r for r in rows if r["band"] == b[0]] for b in bands}
+    lines = ["| contrast | paper | " + " | ".join(f"{c} across ({b})" for b, c in bands) + " |",
+             "|---|---|" + "---|" * len(bands)]
+    for contrast in dict.fromkeys(r["contrast"] for r in rows):
+        mine = [r for r in rows if r["contrast"] == contrast]
+        cells = []
+        for b in bands:
+            pts = [float(r["mean_minus_paper_points"]) for r in sizes[b] if r["contrast"] == contrast]
+            cells.append(f"{min(pts):+.1f} to {max(pts):+.1f}")
+        lines.append(f"| {contrast} | {_range((r['paper_sim_ratio'] for r in mine), '.3f')} | " + " | ".join(cells) + " |")
+    meshes = "; ".join(f"{b[1]} across: {sizes[b][0]['meshes']} meshes, failure strain "
+                       f"{float(sizes[b][0]['failure_strain_min']):.3f}-{float(sizes[b][0]['failure_strain_max']):.3f}"
+                       for b in bands)
+    return "\n".join(lines) + f"\n\n({meshes}; `figures/fe/contrast_band.csv`)\n"
+
+
+def fe_single_meshes(read) -> str:
+    """The eroding FE level's contrasts on the single meshes (ci, full, fine, finer), in points from the paper's
+    simulated ratio: how many cells are monotone over the series, and the widest swing."""
+    rows = _rows(read, "figures/fe/contrast_convergence.csv")
+    across = sorted({float(r["elements_across_radius"]) for r in rows})
+    cells = {}
+    for r in rows:
+        cells.setdefault((r["contrast"], r["velocity_ms"]), {})[float(r["elements_across_radius"])] = \
+            float(r["difference_points"])
+    mono, widest = 0, None
+    for key, by in cells.items():
+        seq = [by[n] for n in across if n in by]
+        steps = [b - a for a, b in zip(seq, seq[1:])]
+        mono += all(d >= 0 for d in steps) or all(d <= 0 for d in steps)
+        swing = max(seq) - min(seq)
+        if widest is None or swing > widest[0]:
+            widest = (swing, key, seq)
+    swing, (contrast, v), seq = widest
+    return (f"Over the single meshes of {', '.join(f'{n:g}' for n in across)} elements across, each calibrated on DO1, "
+            f"the contrasts are monotone in {mono} of {len(cells)} cells; the widest swing is {contrast} at {v} m/s, "
+            f"{', '.join(f'{d:+.1f}' for d in seq)} points from the paper's value "
+            "(`figures/fe/contrast_convergence.csv`).\n")
+
+
 def fe_table3(read) -> str:
     """The FE Table 3 cells within 5 % of the paper's simulation, split by their distance from the DO1 calibration."""
     rows = _rows(read, "figures/fe/full/table3.csv")
@@ -865,7 +909,7 @@ def built_with(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"verdict": verdict, "built_with": built_with, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
+BLOCKS = {"verdict": verdict, "built_with": built_with, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_band_means": fe_band_means, "fe_single_meshes": fe_single_meshes, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
 
 
 def render(text: str, read) -> str:
