@@ -249,6 +249,52 @@ def fe_single_meshes(read) -> str:
             "(`figures/fe/contrast_convergence.csv`).\n")
 
 
+TEXT_CLAIM = {"DO/CRH 3": 1.10, "DO/CRH 4.5": 1.05}   # the text's "+10 % over CRH 3 and +5 % over the equivalent nose"
+
+
+def _claim_velocities(rows, key="ratio"):
+    """The velocities (m/s, as written) at which both of the text's margins hold on ``rows`` (contrast, velocity_ms
+    and the ratio in column ``key``)."""
+    held = {}
+    for r in rows:
+        if r["contrast"] in TEXT_CLAIM:
+            held.setdefault(r["velocity_ms"], []).append(float(r[key]) >= TEXT_CLAIM[r["contrast"]])
+    return [v for v, ok in held.items() if len(ok) == len(TEXT_CLAIM) and all(ok)], len(held)
+
+
+def fe_text_claim(read) -> str:
+    """Where the text's "+10 % / +5 %" (the double ogive over CRH 3 and over CRH 4.5 at the same velocity) holds at the
+    eroding FE level: on each band's means, on each single mesh, and at zero size (the interval's sides)."""
+    def say(vs, n):
+        return "at every velocity" if len(vs) == n else ("at none" if not vs else "at " + ", ".join(vs) + " m/s")
+
+    parts = []
+    band = _rows(read, "figures/fe/contrast_band.csv")
+    for b in dict.fromkeys((r["band"], r["centre_elements_across"]) for r in band):
+        vs, n = _claim_velocities([r for r in band if r["band"] == b[0]], "mean_ratio")
+        parts.append(f"the band around {b[1]} across {say(vs, n)}")
+    order = []
+    for profile, across in (("ci", 3), ("full", 8), ("fine", 10), ("finer", 12)):
+        rows = _rows(read, f"figures/fe/{profile}/table3_ratios.csv")
+        if rows:
+            vs, n = _claim_velocities(rows, "fe_ratio")
+            parts.append(f"the single mesh of {across} across {say(vs, n)}")
+            ordered = {r["velocity_ms"] for r in rows} - {r["velocity_ms"] for r in rows if r["contrast"] in
+                                                         ("DO/CRH 4.5", "CRH 4.5/CRH 3") and float(r["fe_ratio"]) <= 1}
+            order.append(f"{across} across {say(sorted(ordered, key=float), n)}")
+    text = "The text's \"+10 % / +5 %\" (DO/CRH 3 >= 1.10 and DO/CRH 4.5 >= 1.05) holds on " + "; ".join(parts)
+    zero = [r for r in _rows(read, "figures/fe/contrast_extrapolation.csv") if r["contrast"] in TEXT_CLAIM]
+    both = [f"{r['contrast']} at {r['velocity_ms']} m/s" for r in zero
+            if float(r["interval_low"]) < TEXT_CLAIM[r["contrast"]] <= float(r["interval_high"])]
+    if zero:
+        text += ("; at zero size the intervals of " + ", ".join(both) + " hold values on both sides of the margin"
+                 if both else "; at zero size every interval lies on one side of the margin")
+    if order:
+        text += "; the ordering (DO deeper than CRH 4.5, deeper than CRH 3) holds on the single mesh of " + "; ".join(order)
+    return text + (" (`figures/fe/contrast_band.csv`, `figures/fe/{ci,full,fine,finer}/table3_ratios.csv`, "
+                   "`figures/fe/contrast_extrapolation.csv`).\n")
+
+
 def fe_table3(read) -> str:
     """The FE Table 3 cells within 5 % of the paper's simulation, split by their distance from the DO1 calibration."""
     rows = _rows(read, "figures/fe/full/table3.csv")
@@ -909,7 +955,7 @@ def built_with(read) -> str:
     return "\n".join(lines) + "\n"
 
 
-BLOCKS = {"verdict": verdict, "built_with": built_with, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_band_means": fe_band_means, "fe_single_meshes": fe_single_meshes, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
+BLOCKS = {"verdict": verdict, "built_with": built_with, "erosion_free_chaos": erosion_free_chaos, "claims": claims, "paper_eq9": paper_eq9, "studies": studies, "quasi_static": quasi_static, "levels": levels, "answer": answer, "rebuild": rebuild, "validation": validation, "fe_limit": fe_limit, "fe_band_means": fe_band_means, "fe_single_meshes": fe_single_meshes, "fe_text_claim": fe_text_claim, "fe_table3": fe_table3, "wall_times": wall_times, "accuracy": accuracy, "verification": verification, "erosion": erosion, "fe_speed": fe_speed, "rear_face": rear_face, "erosion_free": erosion_free, "erosion_free_status": erosion_free_status, "erosion_free_depths": erosion_free_depths, "erosion_free_window": erosion_free_window, "laboratory": laboratory, **SCALE_BLOCKS, **UNSTATED_BLOCKS}
 
 
 def render(text: str, read) -> str:
