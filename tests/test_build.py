@@ -136,3 +136,26 @@ def test_a_job_that_ignores_sigterm_is_killed_after_the_grace_period(tmp_path):
     assert proc.wait(timeout=GRACE_S + 20) != 0
     assert ends_within(job, 5.0), "the job outlived the build"
     assert time.monotonic() - t0 >= 0.9 * GRACE_S   # it ignored the SIGTERM: the SIGKILL ended it
+
+
+def test_a_committed_record_survives_a_job_that_refuses_to_rebuild_it(tmp_path):
+    """The pieces of the long studies are committed records: a job that a change of the rule's metadata starts
+    anyway, and whose task refuses (no runs given), must leave the record as it was. Every rule fed by
+    record_inputs flags its output update(), and Snakemake then restores the record of a failed job instead of
+    removing it (checked here on a rule of that form)."""
+    import re
+
+    rules = "".join((ROOT / "workflow/rules" / name).read_text() for name in ("figures.smk", "fe_studies.smk"))
+    pieces = re.findall(r"input: \*\*[A-Z_]+_PIECE_INPUTS,\n\s+output: (\w+=[^\n]+)", rules)
+    assert len(pieces) == 5 and all(re.match(r"\w+=update\(", p) for p in pieces), pieces
+    (tmp_path / "Snakefile").write_text(textwrap.dedent("""\
+        rule piece:
+            output: csv=update("pieces/p{v}.csv")
+            shell: "exit 1"   # the task's refusal: a committed piece is not rebuilt
+        """))
+    (tmp_path / "pieces").mkdir()
+    (tmp_path / "pieces/p1.csv").write_text("committed\n")
+    run = subprocess.run([sys.executable, "-m", "snakemake", "-c1", "--forcerun", "piece", "--", "pieces/p1.csv"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert run.returncode != 0
+    assert (tmp_path / "pieces/p1.csv").read_text() == "committed\n"

@@ -65,7 +65,9 @@ def record_inputs(module, record, **runs):
     """The inputs of a rule whose output is a committed record of a study (a piece): while ``record`` (a path with
     the rule's wildcards) is missing, its task, code and runs (``runs``: name -> input function); once it is on disk
     only the task file, as ancient, so that nothing can turn newer and asking for the record by name never deletes
-    it to rebuild it (its task refuses to run without its runs)."""
+    it to rebuild it (its task refuses to run without its runs). The rule marks the record update(): a job that
+    a change of the rule's metadata starts anyway leaves it in place, and Snakemake restores it when the task
+    refuses."""
     t = task(module)
     while_missing = lambda f: (lambda w: [] if Path(record.format(**w)).exists() else f(w))
     return {"task": ancient(t["task"]), "code": while_missing(lambda w: t["code"]),

@@ -69,7 +69,7 @@ FREE_PIECE_INPUTS = record_inputs("tasks.fe_erosion_free", "figures/fe/erosion_f
 
 rule fe_erosion_free_piece:
     input: **FREE_PIECE_INPUTS,
-    output: json="figures/fe/erosion_free/pieces/{piece}.json",
+    output: json=update("figures/fe/erosion_free/pieces/{piece}.json"),
     params: piece=lambda w: w.piece, expected=lambda w: len(FREE_PIECES[w.piece]),
     wildcard_constraints: piece="|".join(FREE_PIECES),
     threads: 1
@@ -308,7 +308,7 @@ REAL_PIECE_INPUTS = record_inputs("tasks.fe_chaos", REAL_PIECE,
 
 rule fe_realisation_piece:
     input: **REAL_PIECE_INPUTS,
-    output: json=REAL_PIECE,
+    output: json=update(REAL_PIECE),
     params: piece=lambda w: f"{w.profile}/{w.scene}/v{w.velocity}_m{w.member}",
             expected=lambda w: len(realisation_shots(w.scene, w.profile, w.velocity, w.member)),
             member=lambda w: int(w.member), velocity_step=REAL["velocity_step"],

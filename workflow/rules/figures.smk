@@ -176,7 +176,7 @@ LAB_PIECE_INPUTS = record_inputs("tasks.laboratory", "figures/fe/{profile}/labor
 
 rule fe_laboratory_grid_value:
     input: **LAB_PIECE_INPUTS,
-    output: csv="figures/fe/{profile}/laboratory_grid/fs_{value}.csv",
+    output: csv=update("figures/fe/{profile}/laboratory_grid/fs_{value}.csv"),
     params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", fe=fe_cfg(w.profile)), profile=lambda w: w.profile,
             value=lambda w: float(w.value),
     wildcard_constraints: profile="full|ci", value="|".join(v.replace(".", r"\.") for v in FE_LAB_GRID),
@@ -425,7 +425,7 @@ SCALE_PIECE_INPUTS = record_inputs("tasks.scale", SCALE_PIECE,
 
 rule scale_fe_grid_value:
     input: **SCALE_PIECE_INPUTS,
-    output: csv=SCALE_PIECE,
+    output: csv=update(SCALE_PIECE),
     params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", "scale_effect", fe=fe_cfg(w.profile)),
             profile=lambda w: w.profile, value=lambda w: float(w.value), variant=lambda w: w.variant,
     wildcard_constraints: profile="full|ci", value=SCALE_FE_VALUES, variant=SCALE_VARIANTS,
@@ -442,7 +442,7 @@ SCALE_CAVITY_PIECE_INPUTS = record_inputs("tasks.scale", SCALE_CAVITY_PIECE,
 
 rule scale_cavity_grid_value:
     input: **SCALE_CAVITY_PIECE_INPUTS,
-    output: csv=SCALE_CAVITY_PIECE,
+    output: csv=update(SCALE_CAVITY_PIECE),
     params: cfg=lambda w: cfg_slice("concrete", "cavity", "validation", "scale_effect"), value=lambda w: float(w.value),
             variant=lambda w: w.variant,
     wildcard_constraints: value=SCALE_CAVITY_VALUES, variant=SCALE_VARIANTS,
