@@ -205,11 +205,19 @@ def fe_limit(read) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _by_band(rows):
+    """contrast_band.csv's rows by band: (band, elements across its centre) -> its rows, in the file's order."""
+    out = {}
+    for r in rows:
+        out.setdefault((r["band"], r["centre_elements_across"]), []).append(r)
+    return out
+
+
 def fe_band_means(read) -> str:
     """The eroding FE level's band means minus the paper's simulated ratios (points), over Table 3's velocities."""
     rows = _rows(read, "figures/fe/contrast_band.csv")
-    bands = list(dict.fromkeys((r["band"], r["centre_elements_across"]) for r in rows))
-    sizes = {b: [r for r in rows if r["band"] == b[0]] for b in bands}
+    sizes = _by_band(rows)
+    bands = list(sizes)
     lines = ["| contrast | paper | " + " | ".join(f"{c} across ({b})" for b, c in bands) + " |",
              "|---|---|" + "---|" * len(bands)]
     for contrast in dict.fromkeys(r["contrast"] for r in rows):
@@ -252,7 +260,7 @@ def fe_single_meshes(read) -> str:
 TEXT_CLAIM = {"DO/CRH 3": 1.10, "DO/CRH 4.5": 1.05}   # the text's "+10 % over CRH 3 and +5 % over the equivalent nose"
 
 
-def _claim_velocities(rows, key="ratio"):
+def _claim_velocities(rows, key):
     """The velocities (m/s, as written) at which both of the text's margins hold on ``rows`` (contrast, velocity_ms
     and the ratio in column ``key``)."""
     held = {}
@@ -269,19 +277,18 @@ def fe_text_claim(read) -> str:
         return "at every velocity" if len(vs) == n else ("at none" if not vs else "at " + ", ".join(vs) + " m/s")
 
     parts = []
-    band = _rows(read, "figures/fe/contrast_band.csv")
-    for b in dict.fromkeys((r["band"], r["centre_elements_across"]) for r in band):
-        vs, n = _claim_velocities([r for r in band if r["band"] == b[0]], "mean_ratio")
-        parts.append(f"the band around {b[1]} across {say(vs, n)}")
+    for (_, centre), rows in _by_band(_rows(read, "figures/fe/contrast_band.csv")).items():
+        vs, n = _claim_velocities(rows, "mean_ratio")
+        parts.append(f"the band around {centre} across {say(vs, n)}")
     order = []
-    for profile, across in (("ci", 3), ("full", 8), ("fine", 10), ("finer", 12)):
-        rows = _rows(read, f"figures/fe/{profile}/table3_ratios.csv")
-        if rows:
-            vs, n = _claim_velocities(rows, "fe_ratio")
-            parts.append(f"the single mesh of {across} across {say(vs, n)}")
-            ordered = {r["velocity_ms"] for r in rows} - {r["velocity_ms"] for r in rows if r["contrast"] in
-                                                         ("DO/CRH 4.5", "CRH 4.5/CRH 3") and float(r["fe_ratio"]) <= 1}
-            order.append(f"{across} across {say(sorted(ordered, key=float), n)}")
+    single = _rows(read, "figures/fe/contrast_convergence.csv")
+    for across in sorted({float(r["elements_across_radius"]) for r in single}):
+        rows = [r for r in single if float(r["elements_across_radius"]) == across]
+        vs, n = _claim_velocities(rows, "fe_ratio")
+        parts.append(f"the single mesh of {across:g} across {say(vs, n)}")
+        ordered = {r["velocity_ms"] for r in rows} - {r["velocity_ms"] for r in rows if r["contrast"] in
+                                                     ("DO/CRH 4.5", "CRH 4.5/CRH 3") and float(r["fe_ratio"]) <= 1}
+        order.append(f"{across:g} across {say(sorted(ordered, key=float), n)}")
     text = "The text's \"+10 % / +5 %\" (DO/CRH 3 >= 1.10 and DO/CRH 4.5 >= 1.05) holds on " + "; ".join(parts)
     zero = [r for r in _rows(read, "figures/fe/contrast_extrapolation.csv") if r["contrast"] in TEXT_CLAIM]
     both = [f"{r['contrast']} at {r['velocity_ms']} m/s" for r in zero
@@ -291,7 +298,7 @@ def fe_text_claim(read) -> str:
                  if both else "; at zero size every interval lies on one side of the margin")
     if order:
         text += "; the ordering (DO deeper than CRH 4.5, deeper than CRH 3) holds on the single mesh of " + "; ".join(order)
-    return text + (" (`figures/fe/contrast_band.csv`, `figures/fe/{ci,full,fine,finer}/table3_ratios.csv`, "
+    return text + (" (`figures/fe/contrast_band.csv`, `figures/fe/contrast_convergence.csv`, "
                    "`figures/fe/contrast_extrapolation.csv`).\n")
 
 
@@ -656,8 +663,7 @@ def rear_face(read) -> str:
     if members:
         bottom = float(block["bottom_depth_m"])
         short = [bottom - float(r["depth_m"]) for r in members if r["status"] == "rest"]
-        through = sum(r["status"] == "perforated" for r in members)
-        moving = sum(r["status"] == "end_time" for r in members)
+        through, moving = int(block["perforated"]), int(block["moving_at_end"])
         text = f"In the block ({block['scene']}, {bottom:g} m deep), {len(short)} of {len(members)} realisations came to rest"
         text += f", {min(short):.2f}-{max(short):.2f} m short of its rear face" if short else ""
         text += f"; {through} perforated it or bulged through it" if through else ""
