@@ -173,7 +173,7 @@ def smaller_peak(ev, level):
 
 def predicts(ev, level):
     err = users_validation(ev.validation)[0].median_abs_rel_err[level]
-    return ("good" if err <= VALIDATION_GOAL else "poor"), f"median error {100 * err:.0f} %", float(err)
+    return ("good" if err <= VALIDATION_GOAL else "poor"), f"median error {100 * err:.1f} %", float(err)
 
 
 def claims(ev):
