@@ -52,12 +52,15 @@ def test_the_studies_built_with_an_older_code_are_listed_and_only_they():
 def test_the_rebuild_times_name_the_last_run_on_each_machine_newest_first():
     from penetration.pipeline.docs import rebuild
     header = "date,commit,target,install_s,target_s,total_s,clean_but_timing,machine\n"
-    rows = ["2026-01-01T00:00:00Z,aaa,reproduce,60,1200,1260,False,M1",
-            "2026-01-02T00:00:00Z,bbb,reproduce,60,600,660,False,M2",
-            "2026-01-03T00:00:00Z,ccc,reproduce,60,1800,1860,False,M1",
-            "2026-01-04T00:00:00Z,ddd,ci,0,900,900,False,M2"]
+    header = header.rstrip("\n") + ",install_cache\n"
+    rows = ["2026-01-01T00:00:00Z,aaa,reproduce,60,1200,1260,False,M1,",
+            "2026-01-02T00:00:00Z,bbb,reproduce,60,600,660,False,M2,",
+            "2026-01-03T00:00:00Z,ccc,reproduce,60,1800,1860,False,M1,warm",
+            "2026-01-04T00:00:00Z,ddd,ci,0,900,900,False,M2,cold"]
     block = rebuild(lambda path: header + "\n".join(rows) + "\n")
     lines = [line for line in block.splitlines() if line.startswith("- ")]
     # M1's newer run (31.0 min, ccc) replaces its older one; M2's reproduce run stays beside it, after it by date
     assert [line.split("commit ")[1] for line in lines] == ["ccc, on M1", "bbb, on M2", "ddd, on M2"]
     assert "31.0 min" in lines[0] and "11.0 min" in lines[1] and "15.0 min" in lines[2]
+    # the installer's cache where the record has it (a run before the column: nothing said)
+    assert "cache warm" in lines[0] and "cache" not in lines[1] and "cache cold" in lines[2]

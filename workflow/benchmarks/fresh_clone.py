@@ -6,7 +6,9 @@ Clones this repository's HEAD into a temporary folder (or DIR), runs `make insta
 a fresh virtual environment (pip's download cache is the machine's, as for any user), and prints the wall time of
 each step, the machine (CPU model, cores, memory) and whether `git status` is clean afterwards (timing files
 aside). `--target ci` runs `CI=true bash .ci/run` instead of install + target. The record is appended to
-figures/timing/fresh_clone.csv of this checkout (a machine-dependent file), one row per run.
+figures/timing/fresh_clone.csv of this checkout (a machine-dependent file), one row per run, with whether uv's
+download cache held anything before the install (`install_cache`: warm or cold; a warm cache installs in about a
+third of the time), since a new machine starts cold.
 """
 from __future__ import annotations
 
@@ -41,6 +43,31 @@ def machine() -> str:
     return f"{cpu}, {os.cpu_count()} CPUs, {mem:.0f} GiB, Python {platform.python_version()}"
 
 
+def install_cache(env) -> str:
+    """'warm' if uv's download cache (UV_CACHE_DIR, else XDG_CACHE_HOME/uv or ~/.cache/uv) holds anything, else 'cold'."""
+    folder = env.get("UV_CACHE_DIR") or Path(env.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "uv"
+    folder = Path(folder)
+    return "warm" if folder.is_dir() and any(folder.iterdir()) else "cold"
+
+
+def append(record: Path, row: dict) -> None:
+    """Append ``row`` to the CSV ``record``, adding any new column to the rows before (empty there); the file is
+    rewritten through a temporary file and replaced at once, so that an interruption leaves the old one whole."""
+    rows, fields = [], []
+    if record.is_file():
+        with open(record, newline="") as fh:
+            reader = csv.DictReader(fh)
+            fields, rows = list(reader.fieldnames or []), list(reader)
+    fields += [k for k in row if k not in fields]
+    record.parent.mkdir(parents=True, exist_ok=True)
+    tmp = record.with_suffix(".csv.tmp")
+    with open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=fields, lineterminator="\n", restval="")
+        w.writeheader()
+        w.writerows(rows + [row])
+    os.replace(tmp, record)
+
+
 def timed(cmd, cwd, env) -> float:
     print(f"$ {' '.join(cmd)}", flush=True)
     t0 = time.monotonic()
@@ -56,6 +83,7 @@ def main(argv=None) -> int:
     work = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="penetration-clone-"))
     commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
     env = {k: v for k, v in os.environ.items() if k not in ("VIRTUAL_ENV", "PYTHONPATH")}
+    cache = install_cache(env)
     try:
         subprocess.run(["git", "clone", "--quiet", str(ROOT), str(work / "repo")], check=True)
         repo = work / "repo"
@@ -71,17 +99,12 @@ def main(argv=None) -> int:
             shutil.rmtree(work, ignore_errors=True)
     row = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"), "commit": commit[:12],
            "target": args.target, "install_s": round(install, 1), "target_s": round(build, 1),
-           "total_s": round(install + build, 1), "clean_but_timing": not changed, "machine": machine()}
+           "total_s": round(install + build, 1), "clean_but_timing": not changed, "machine": machine(),
+           "install_cache": cache}
     print(f"fresh clone of {commit[:12]}: install {install / 60:.1f} min, {args.target} {build / 60:.1f} min, "
-          f"total {(install + build) / 60:.1f} min on {row['machine']}")
+          f"total {(install + build) / 60:.1f} min on {row['machine']} (uv's cache {cache})")
     print("git status afterwards: " + ("clean (timing files aside)" if not changed else f"changed: {changed}"))
-    new = not RECORD.is_file()
-    RECORD.parent.mkdir(parents=True, exist_ok=True)
-    with open(RECORD, "a", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(row), lineterminator="\n")
-        if new:
-            w.writeheader()
-        w.writerow(row)
+    append(RECORD, row)
     return 0
 
 

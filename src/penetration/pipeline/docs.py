@@ -703,6 +703,8 @@ def rebuild(read) -> str:
         for r in sorted((r for (t, _), r in last.items() if t == target), key=lambda r: r["date"], reverse=True):
             install = ("install included" if target == "ci" else
                        f"install {float(r['install_s']) / 60:.1f} min, {target} {float(r['target_s']) / 60:.1f} min")
+            if r.get("install_cache") in ("warm", "cold"):   # recorded since 2026-12-01: a warm cache installs faster
+                install += f"; uv's download cache {r['install_cache']}"
             out.append(f"- {what}: {float(r['total_s']) / 60:.1f} min from a fresh clone ({install}), {r['date'][:10]}, "
                        f"commit {r['commit']}, on {r['machine']}")
     return "\n".join(out) + "\n\n(`figures/timing/fresh_clone.csv`, written by `workflow/benchmarks/fresh_clone.py`)\n"
