@@ -51,8 +51,7 @@ def test_the_studies_built_with_an_older_code_are_listed_and_only_they():
 
 def test_the_rebuild_times_name_the_last_run_on_each_machine_newest_first():
     from penetration.pipeline.docs import rebuild
-    header = "date,commit,target,install_s,target_s,total_s,clean_but_timing,machine\n"
-    header = header.rstrip("\n") + ",install_cache\n"
+    header = "date,commit,target,install_s,target_s,total_s,clean_but_timing,machine,install_cache\n"
     rows = ["2026-01-01T00:00:00Z,aaa,reproduce,60,1200,1260,False,M1,",
             "2026-01-02T00:00:00Z,bbb,reproduce,60,600,660,False,M2,",
             "2026-01-03T00:00:00Z,ccc,reproduce,60,1800,1860,False,M1,warm",

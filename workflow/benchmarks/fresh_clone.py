@@ -44,15 +44,17 @@ def machine() -> str:
 
 
 def install_cache(env) -> str:
-    """'warm' if uv's download cache (UV_CACHE_DIR, else XDG_CACHE_HOME/uv or ~/.cache/uv) holds anything, else 'cold'."""
-    folder = env.get("UV_CACHE_DIR") or Path(env.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "uv"
-    folder = Path(folder)
+    """'warm' if uv's download cache (UV_CACHE_DIR, else XDG_CACHE_HOME/uv or ~/.cache/uv) holds anything, else
+    'cold'."""
+    folder = Path(env.get("UV_CACHE_DIR") or Path(env.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "uv")
     return "warm" if folder.is_dir() and any(folder.iterdir()) else "cold"
 
 
 def append(record: Path, row: dict) -> None:
     """Append ``row`` to the CSV ``record``, adding any new column to the rows before (empty there); the file is
-    rewritten through a temporary file and replaced at once, so that an interruption leaves the old one whole."""
+    rewritten through a temporary file and replaced at once, so that an interruption leaves the old one whole. Not
+    penetration.pipeline.io's write_rows: this script runs on the bare python3 that builds the fresh environment, where
+    the package's dependencies (pandas, which that module imports) are not installed."""
     rows, fields = [], []
     if record.is_file():
         with open(record, newline="") as fh:
