@@ -213,3 +213,32 @@ def test_window_summary_is_welchs_difference_relative_to_the_whole_domain():
     assert s["interval_low_pct"] == pytest.approx(100 * (d - half) / mf, rel=1e-9)
     assert s["interval_high_pct"] == pytest.approx(100 * (d + half) / mf, rel=1e-9)
     assert s["within_goal"] and not S.window_summary(runs, 0.9, 0.1)["within_goal"]
+
+
+def test_do1_test_tables_means_excess_bounds_and_the_block_effect_by_hand():
+    semi, block = [3.6, 3.7, 3.65, 3.55], [3.7, 3.9, 3.8]
+    rows = [{"target": t, "member": k, "depth_m": d, "status": s}
+            for t, ds, s in (("semi_infinite", semi, "rest"), ("block", block, "rest")) for k, d in enumerate(ds)]
+    rows[-1]["status"] = "perforated"
+    t = S.do1_test_tables(pd.DataFrame(rows), 5.1, 0.95).set_index("target")
+    assert list(t.index) == ["semi_infinite", "block"]              # the first target first: the others' reference
+    n, mean = 4, sum(semi) / 4
+    sd = math.sqrt(sum((v - mean) ** 2 for v in semi) / (n - 1))
+    half = T975[3] * sd / math.sqrt(n)
+    r = t.loc["semi_infinite"]
+    assert (r.mean_low_m, r.mean_high_m) == pytest.approx((mean - half, mean + half), rel=1e-12)
+    # the measured depth's excess over the mean, and over the interval's ends (a deeper end: a smaller excess)
+    assert r.excess == pytest.approx(5.1 / mean - 1, rel=1e-12)
+    assert (r.excess_low, r.excess_high) == pytest.approx((5.1 / (mean + half) - 1, 5.1 / (mean - half) - 1), rel=1e-12)
+    assert math.isnan(r.effect_vs_first_m)
+    b = t.loc["block"]
+    mb = sum(block) / 3
+    vx = sd ** 2 / n
+    vy = sum((v - mb) ** 2 for v in block) / 2 / 3
+    nu = (vx + vy) ** 2 / (vx ** 2 / (n - 1) + vy ** 2 / 2)
+    whalf = stats.t.ppf(0.975, nu) * math.sqrt(vx + vy)
+    assert b.effect_vs_first_m == pytest.approx(mb - mean, rel=1e-12)
+    assert (b.effect_low_m, b.effect_high_m) == pytest.approx((mb - mean - whalf, mb - mean + whalf), rel=1e-10)
+    assert (b.at_rest, b.perforated, b.realisations) == (2, 1, 3)
+    with pytest.raises(ValueError, match="at least 2"):
+        S.do1_test_tables(pd.DataFrame(rows[:5]), 5.1, 0.95)

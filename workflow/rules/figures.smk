@@ -220,6 +220,39 @@ rule do1_test:
     script: "../scripts/run_task.py"
 
 
+# DO1 as a test of the fe level at the default mesh over realisations of the erosion chaos (a study,
+# config do1_test_fe): each realisation one job, in the semi-infinite target and in the experiment's block.
+DO1_TEST_FE = config["do1_test_fe"]
+
+
+rule do1_test_fe_shot:
+    input: **task("tasks.laboratory"), reference=config["reference"], do1="results/geometry/double_ogive_table4.json",
+           laboratory="figures/calibration_cavity_laboratory.csv",
+           fe_laboratory="figures/fe/full/calibration_fe_laboratory.csv",
+    output: json="results/do1_test/fe_{target}_m{member}.json",
+    params: cfg=cfg_slice("concrete", "cavity", "validation", fe=fe_cfg("full")), shot=config["calibration"]["do1"],
+            target=lambda w: w.target, member=lambda w: w.member, velocity_step=DO1_TEST_FE["velocity_step"],
+            block_depth=config["fe"]["block_depth"],
+    wildcard_constraints: target="semi_infinite|block", member=r"\d+",
+    threads: 1   # as fe_shot: two one-thread shots side by side do more per hour
+    resources: mem_mb=2000, runtime=10
+    benchmark: "results/benchmarks/do1_test_fe_shot_{target}_m{member}.tsv"
+    log: "results/logs/do1_test_fe_shot_{target}_m{member}.log",
+    script: "../scripts/run_task.py"
+
+
+rule do1_test_fe:
+    input: **task("tasks.laboratory"),
+           shots=[f"results/do1_test/fe_{t}_m{k}.json" for t in DO1_TEST_FE["targets"] for k in range(DO1_TEST_FE["members"])],
+    output: csv="figures/fe/do1_test.csv", members="figures/fe/do1_test_members.csv",
+    params: confidence=DO1_TEST_FE["confidence"],
+    threads: 1
+    resources: mem_mb=500, runtime=2
+    benchmark: "results/benchmarks/do1_test_fe.tsv"
+    log: "results/logs/do1_test_fe.log",
+    script: "../scripts/run_task.py"
+
+
 use rule accuracy_trajectory as validation_levels with:
     input: **task("tasks.levels"), analytic="results/validation/predictions.csv",
            trajectory="results/validation/trajectory.csv", cavity="results/validation/cavity.csv",

@@ -196,5 +196,65 @@ def scale_do1_gap(read) -> str:
     return "\n".join(lines) + "\n" + tail + "\n"
 
 
+def _sci(x) -> str:
+    """A small number as 1e-9 (not 1e-09)."""
+    m, e = f"{x:.0e}".split("e")
+    return f"{m}e{int(e)}"
+
+
+def do1_test_fe(read) -> str:
+    """DO1 as a test of the fe level with its laboratory failure strain over realisations, in the semi-infinite target
+    and in the experiment's block (figures/fe/do1_test.csv): the table and the block's effect."""
+    rows = rows_if_any(read, "figures/fe/do1_test.csv")
+    if not rows:
+        return "Not yet run: `snakemake -c2 figures/fe/do1_test.csv`.\n"
+    name = {"semi_infinite": "semi-infinite (users' shots)", "block": "the experiment's block (5.4 m deep, free faces)"}
+    conf = f"{100 * float(rows[0]['confidence']):.0f} %"
+    lines = [f"| target | realisations | mean depth (m) | range (m) | {conf} interval of the mean (m) | at rest / "
+             f"perforated | DO1 deeper by |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {name.get(r['target'], r['target'])} | {r['realisations']} | {float(r['mean_m']):.3f} | "
+                     f"{float(r['min_m']):.3f}-{float(r['max_m']):.3f} | {float(r['mean_low_m']):.3f}-"
+                     f"{float(r['mean_high_m']):.3f} | {r['at_rest']} / {r['perforated']} | "
+                     f"{100 * float(r['excess']):+.1f} % ({100 * float(r['excess_low']):+.1f} to "
+                     f"{100 * float(r['excess_high']):+.1f} %) |")
+    import yaml
+
+    first = rows[0]
+    members = rows_if_any(read, "figures/fe/do1_test_members.csv")
+    step = yaml.safe_load(read("workflow/config.yaml"))["do1_test_fe"]["velocity_step"]
+    v0 = min(float(m["striking_velocity_ms"]) for m in members) if members else None
+    tail = [f"Failure strain {float(members[0]['failure_strain']):.3f}, fitted on the laboratory shots at the full "
+            f"mesh ({float(members[0]['element_size_m']) * 1e3:g} mm elements at DO1); DO1 struck at {v0:g} m/s times "
+            f"1 + k {_sci(step)}, k = 0-{int(first['realisations']) - 1} (`figures/fe/do1_test.csv`, "
+            "`figures/fe/do1_test_members.csv`)."] if members else []
+    for r in rows[1:]:
+        tail.append(f"From the {name.get(first['target'], first['target']).split(' (')[0]} target to "
+                    f"{name.get(r['target'], r['target']).split(' (')[0]} the mean depth changes by "
+                    f"{float(r['effect_vs_first_m']):+.3f} m ({conf} Welch interval {float(r['effect_low_m']):+.3f} to "
+                    f"{float(r['effect_high_m']):+.3f} m).")
+    return "\n".join(lines) + "\n" + ("\n" + " ".join(tail) + "\n" if tail else "")
+
+
+def do1_test_fe_sentence(read) -> str:
+    """One sentence for the README: the fe level's DO1 test in the semi-infinite target and in the block."""
+    rows = {r["target"]: r for r in rows_if_any(read, "figures/fe/do1_test.csv")}
+    if {"semi_infinite", "block"} - set(rows):
+        return "The fe level's DO1 test in the experiment's block has not run: `snakemake -c2 figures/fe/do1_test.csv`.\n"
+    import yaml
+
+    s, b = rows["semi_infinite"], rows["block"]
+    bottom = yaml.safe_load(read("workflow/config.yaml"))["fe"]["block_depth"]
+    short = bottom - float(b["measured_depth_m"])
+    return (f"Nor does DO1's block, {bottom:g} m deep with the shot stopped {short:.1f} m short of its rear face: the fe "
+            f"level with its "
+            f"failure strain fitted on the laboratory shots (full mesh, {b['realisations']} realisations each) goes "
+            f"{float(s['mean_m']):.2f} m deep in the semi-infinite target and {float(b['mean_m']):.2f} m in the block "
+            f"(the block adds {float(b['effect_vs_first_m']):+.2f} m, {100 * float(b['confidence']):.0f} % interval "
+            f"{float(b['effect_low_m']):+.2f} to {float(b['effect_high_m']):+.2f} m), so DO1 is still "
+            f"{100 * float(b['excess']):.0f} % deeper than predicted (`figures/fe/do1_test.csv`).\n")
+
+
 BLOCKS = {"scale_effect": scale_effect, "scale_levels": scale_levels, "scale_table3": scale_table3,
-          "scale_do1_gap": scale_do1_gap}
+          "scale_do1_gap": scale_do1_gap, "do1_test_fe": do1_test_fe,
+          "do1_test_fe_sentence": do1_test_fe_sentence}

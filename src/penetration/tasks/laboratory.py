@@ -3,6 +3,7 @@ development shots by the protocol of the config's ``validation.laboratory`` sect
 it held out."""
 from __future__ import annotations
 
+import dataclasses
 import time
 
 import numpy as np
@@ -10,8 +11,9 @@ import pandas as pd
 
 from ..paper import reference
 from ..pipeline.config import machine_name
-from ..pipeline.io import read_inference, read_rows, task, write_csv
-from ..shots.ladder import UserShot, run, user_shot
+from ..pipeline.io import load_json, read_inference, read_rows, task, write_csv, write_json
+from ..shots.ladder import UserShot, fe_spec, run, user_shot
+from ..studies.fe_results import do1_test_tables
 from ..studies.laboratory import FITTED, Protocol, errors_summary, fit_factor, interpolated_depths
 from .common import do1_shot
 from .levels import context_from_files
@@ -176,21 +178,27 @@ def calibrate_fe_laboratory(inputs, outputs, params):
                grid_runs=lambda rows: grid_runs_from([g["path"] for g in params.grid], rows, grid))
 
 
+def _do1(inputs, params, fe_cal=None):
+    """(DO1 as a user's shot, the levels' context with the laboratory calibrations, the measured depth): Table 2's
+    concrete (its fc, and Table 1's density: the set the DO1 calibrations take); the fe level meshes the projectile's
+    body too, so the shot carries DO1's length (Table 2) where an fe calibration ``fe_cal`` is given."""
+    refs = reference.load_reference(inputs.reference)
+    nose = read_inference(inputs.do1)["nose"]
+    mass, vs, depth = do1_shot(refs, params.shot)
+    ctx = context_from_files(params.cfg, inputs.reference, inputs.laboratory, fe_cal)
+    shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1",
+                    length=refs["table2.length"].si if fe_cal else None)
+    return shot, ctx, depth
+
+
 @task
 def do1_test(inputs, outputs, params):
     """DO1 as a test: the paper's measured shot (5.1 m) predicted at the analytic, trajectory and cavity levels with
     the calibrations fitted on the laboratory shots (none for the closed forms: Li & Chen's S) and at the fe level
     with its failure strain fitted on them (where the rule gives that record), its excess over each prediction
     recorded as a finding."""
-    refs = reference.load_reference(inputs.reference)
-    nose = read_inference(inputs.do1)["nose"]
-    mass, vs, depth = do1_shot(refs, params.shot)
     fe_cal = inputs.fe_laboratory if "fe_laboratory" in inputs.keys() else None
-    ctx = context_from_files(params.cfg, inputs.reference, inputs.laboratory, fe_cal)
-    # Table 2's concrete: its fc, and Table 1's density (the set the DO1 calibrations take); the fe level meshes the
-    # projectile's body too: the DO1 projectile's length (Table 2)
-    shot = UserShot(nose, mass, vs, refs["table2.fc"].si, ctx.base.rho0, label="DO1",
-                    length=refs["table2.length"].si if fe_cal else None)
+    shot, ctx, depth = _do1(inputs, params, fe_cal)
     rows = []
     for level in ("analytic", "trajectory", "cavity") + (("fe",) if fe_cal else ()):
         r = run(shot, level, ctx)
@@ -201,3 +209,60 @@ def do1_test(inputs, outputs, params):
                      "failure_strain": ctx.failure_strain if level == "fe" else np.nan, "status": r.status})
         print(f"DO1 at the {level} level: {r.depth_m:.4g} m against the measured {depth:.4g} m", flush=True)
     write_csv(pd.DataFrame(rows), outputs.csv)
+
+
+# the targets of the fe level's DO1 test: the semi-infinite target of users' shots, and the experiment's block
+DO1_TEST_TARGETS = ("semi_infinite", "block")
+
+
+@task
+def do1_test_fe_shot(inputs, outputs, params):
+    """One realisation of DO1 as a test of the fe level (its failure strain fitted on the laboratory shots, the mesh
+    of params.cfg's fe section), struck at v (1 + member x velocity_step): in the semi-infinite target of users'
+    shots (member 0 is do1_test's own fe shot) or in the experiment's block (params.block_depth deep, the 3.6 m x
+    3.6 m cross-section as a cylinder of equal area, free faces)."""
+    from ..fe.shot import progress_to, run_shot
+    from ..fe.spec import BLOCK_RADIUS, TargetSpec
+
+    member, step, target = int(params.member), float(params.velocity_step), params.target
+    if member < 0:
+        raise ValueError(f"do1_test_fe member {member}; allowed: >= 0")
+    if not 0.0 < step <= 1e-6:
+        raise ValueError(f"do1_test_fe.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
+                         "the chaos, not a change of the shot)")
+    if target not in DO1_TEST_TARGETS:
+        raise ValueError(f"do1_test_fe target {target!r}; allowed: one of {DO1_TEST_TARGETS}")
+    shot, ctx, depth = _do1(inputs, params, inputs.fe_laboratory)
+    spec, _ = fe_spec(shot, ctx)
+    if target == "block":
+        spec = dataclasses.replace(spec, target=TargetSpec("block", BLOCK_RADIUS, float(params.block_depth)))
+    spec = dataclasses.replace(spec, velocity=shot.velocity * (1.0 + member * step))
+    with progress_to(lambda line: print(line, flush=True)):
+        r = run_shot(spec)
+    write_json({"target": target, "member": member, "striking_velocity_ms": spec.velocity,
+                "failure_strain": ctx.failure_strain, "failure_strain_source": ctx.failure_strain_source,
+                "element_size_m": spec.settings.element_size, "target_spec": dataclasses.asdict(spec.target),
+                "measured_depth_m": depth, "final_velocity_ms": float(r.histories["velocity"][-1]), **r.summary()},
+               outputs.json)
+    print(f"DO1 at the fe level, {target} target, member {member}: {r.depth:.4g} m ({r.status})", flush=True)
+
+
+@task
+def do1_test_fe(inputs, outputs, params):
+    """DO1 as a test of the fe level over realisations in each target (do1_test_fe_shot's records): the members and,
+    per target, the depths' mean with its interval, the measured depth's excess over it and the block's effect."""
+    keep = ("target", "member", "striking_velocity_ms", "failure_strain", "element_size_m", "depth_m", "status",
+            "time_to_rest_s", "final_velocity_ms", "wall_time_s", "energy_error_max", "measured_depth_m")
+    members = pd.DataFrame([{k: s[k] for k in keep} for s in map(load_json, inputs.shots)])
+    members = members.sort_values(["target", "member"], key=lambda c: c.map(DO1_TEST_TARGETS.index)
+                                  if c.name == "target" else c, kind="stable").reset_index(drop=True)
+    members["excess"] = members.measured_depth_m / members.depth_m - 1
+    measured = members.measured_depth_m.unique()
+    if measured.size != 1:
+        raise ValueError(f"DO1 test records with measured depths {list(measured)}; allowed: one")
+    write_csv(members, outputs.members)
+    t = do1_test_tables(members, float(measured[0]), float(params.confidence))
+    write_csv(t, outputs.csv)
+    for r in t.itertuples():
+        print(f"DO1 at the fe level, {r.target}: mean {r.mean_m:.4g} m over {r.realisations} realisations "
+              f"({r.min_m:.4g}-{r.max_m:.4g} m), DO1 {100 * r.excess:+.1f} % deeper", flush=True)
