@@ -12,6 +12,8 @@ dicts or arrays); outputs are frames and dicts. Nothing here reads or writes a f
 - Convergence: each contrast against the element size, the limit at h = 0 by ``mesh_convergence.size_regression``.
 - The rear face (a chain of targets, one change a step) and the moving window (window against whole domain): the
   difference of mean depths with Welch's interval.
+- DO1 as a test of the level calibrated on other shots: its realisations per target, the measured depth's excess
+  over their mean, and each target's effect against the first.
 """
 from __future__ import annotations
 
