@@ -33,10 +33,11 @@ def test_every_realisation_takes_the_laboratory_failure_strain_and_the_table_is_
         assert g.striking_velocity_ms.max() / g.striking_velocity_ms.min() - 1 < 1e-7
 
 
-@pytest.mark.parametrize("member, step, target, text", [(-1, 1e-9, "block", "member -1; allowed: >= 0"),
-                                                        (1, 0.0, "block", "velocity_step = 0.0; allowed"),
-                                                        (1, 1e-3, "block", "velocity_step = 0.001; allowed"),
-                                                        (1, 1e-9, "slab", "target 'slab'; allowed")])
+@pytest.mark.parametrize("member, step, target, text", [
+    (-1, 1e-9, "block", r"do1_test_fe member -1; allowed: >= 0$"),
+    (1, 0.0, "block", r"do1_test_fe.velocity_step = 0.0; allowed: 0 < velocity_step <= 1e-6"),
+    (1, 1e-3, "block", r"do1_test_fe.velocity_step = 0.001; allowed: 0 < velocity_step <= 1e-6"),
+    (1, 1e-9, "slab", r"do1_test_fe.targets: 'slab'; allowed: one of \('semi_infinite', 'block'\)")])
 def test_a_bad_member_step_or_target_is_refused_before_the_run(member, step, target, text):
     with pytest.raises(ValueError, match=text):
-        do1_test_fe_shot(NS(), NS(), NS(member=member, velocity_step=step, target=target, block_depth=5.4))
+        do1_test_fe_shot(NS(), NS(), NS(member=member, velocity_step=step, target=target))

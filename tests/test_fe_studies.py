@@ -218,10 +218,12 @@ def test_window_summary_is_welchs_difference_relative_to_the_whole_domain():
 def test_do1_test_tables_means_excess_bounds_and_the_block_effect_by_hand():
     semi, block = [3.6, 3.7, 3.65, 3.55], [3.7, 3.9, 3.8]
     rows = [{"target": t, "member": k, "depth_m": d, "status": s}
-            for t, ds, s in (("semi_infinite", semi, "rest"), ("block", block, "rest")) for k, d in enumerate(ds)]
-    rows[-1]["status"] = "perforated"
-    t = S.do1_test_tables(pd.DataFrame(rows), 5.1, 0.95).set_index("target")
-    assert list(t.index) == ["semi_infinite", "block"]              # the first target first: the others' reference
+            for t, ds, s in (("block", block, "rest"), ("semi_infinite", semi, "rest")) for k, d in enumerate(ds)]
+    rows[2]["status"] = "perforated"
+    rows[1]["status"] = "end_time"
+    frame = pd.DataFrame(rows)   # the block's rows first: the reference is the targets' first, not the rows'
+    t = S.do1_test_tables(frame, ["semi_infinite", "block"], 5.1, 0.95).set_index("target")
+    assert list(t.index) == ["semi_infinite", "block"]
     n, mean = 4, sum(semi) / 4
     sd = math.sqrt(sum((v - mean) ** 2 for v in semi) / (n - 1))
     half = T975[3] * sd / math.sqrt(n)
@@ -237,8 +239,13 @@ def test_do1_test_tables_means_excess_bounds_and_the_block_effect_by_hand():
     vy = sum((v - mb) ** 2 for v in block) / 2 / 3
     nu = (vx + vy) ** 2 / (vx ** 2 / (n - 1) + vy ** 2 / 2)
     whalf = stats.t.ppf(0.975, nu) * math.sqrt(vx + vy)
-    assert b.effect_vs_first_m == pytest.approx(mb - mean, rel=1e-12)
+    assert b.effect_vs_first_m == pytest.approx(mb - mean, rel=1e-12)   # the block's mean minus the first target's
     assert (b.effect_low_m, b.effect_high_m) == pytest.approx((mb - mean - whalf, mb - mean + whalf), rel=1e-10)
-    assert (b.at_rest, b.perforated, b.realisations) == (2, 1, 3)
-    with pytest.raises(ValueError, match="at least 2"):
-        S.do1_test_tables(pd.DataFrame(rows[:5]), 5.1, 0.95)
+    assert (b.at_rest, b.perforated, b.moving_at_end, b.realisations) == (1, 1, 1, 3)
+    # the other way round: the block is the reference and the semi-infinite target's effect is the negative
+    u = S.do1_test_tables(frame, ["block", "semi_infinite"], 5.1, 0.95).set_index("target")
+    assert u.loc["semi_infinite", "effect_vs_first_m"] == pytest.approx(mean - mb, rel=1e-12)
+    with pytest.raises(ValueError, match=r"do1_test_fe.members: 1 realisation of target semi_infinite; allowed: >= 2"):
+        S.do1_test_tables(frame.iloc[:4], ["block", "semi_infinite"], 5.1, 0.95)
+    with pytest.raises(ValueError, match=r"do1_test_fe.targets: \['block'\]; allowed: the records' targets"):
+        S.do1_test_tables(frame, ["block"], 5.1, 0.95)

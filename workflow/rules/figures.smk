@@ -232,7 +232,6 @@ rule do1_test_fe_shot:
     output: json="results/do1_test/fe_{target}_m{member}.json",
     params: cfg=cfg_slice("concrete", "cavity", "validation", fe=fe_cfg("full")), shot=config["calibration"]["do1"],
             target=lambda w: w.target, member=lambda w: w.member, velocity_step=DO1_TEST_FE["velocity_step"],
-            block_depth=config["fe"]["block_depth"],
     wildcard_constraints: target="semi_infinite|block", member=r"\d+",
     threads: 1   # as fe_shot: two one-thread shots side by side do more per hour
     resources: mem_mb=2000, runtime=10
@@ -245,7 +244,7 @@ rule do1_test_fe:
     input: **task("tasks.laboratory"),
            shots=[f"results/do1_test/fe_{t}_m{k}.json" for t in DO1_TEST_FE["targets"] for k in range(DO1_TEST_FE["members"])],
     output: csv="figures/fe/do1_test.csv", members="figures/fe/do1_test_members.csv",
-    params: confidence=DO1_TEST_FE["confidence"],
+    params: confidence=DO1_TEST_FE["confidence"], targets=DO1_TEST_FE["targets"],
     threads: 1
     resources: mem_mb=500, runtime=2
     benchmark: "results/benchmarks/do1_test_fe.tsv"

@@ -379,25 +379,30 @@ def window_summary(runs: pd.DataFrame, confidence: float, goal_pct: float) -> di
             "goal_pct": goal_pct, "within_goal": bool(-goal_pct <= lo_pct and hi_pct <= goal_pct)}
 
 
-def do1_test_tables(members: pd.DataFrame, measured, confidence):
-    """DO1 as a test of the fe level over realisations of the erosion chaos in each target (``members``: one row per
-    realisation with target, member and depth_m and status): per target the depths' mean, spread and Student-t
-    interval, how many came to rest or perforated, and the measured depth's excess over the mean with the interval's
-    bounds carried over (measured / depth - 1: a positive excess, the measured shot went deeper); on every target after
-    the first, its effect on the mean depth against the first with Welch's interval."""
-    targets = list(dict.fromkeys(members.target))
+def do1_test_tables(members: pd.DataFrame, targets, measured, confidence):
+    """DO1 as a test of the fe level over realisations of the erosion chaos in each of ``targets`` (in order, the first
+    the reference; ``members``: one row per realisation with target, member, depth_m and status): per target the
+    depths' mean, spread and Student-t interval, how many came to rest, perforated or still moved at the run's end,
+    and the measured depth's excess over the mean with the interval's bounds carried over (measured / depth - 1: a
+    positive excess, the measured shot went deeper); on every target after the first, its effect on the mean depth
+    against the first with Welch's interval."""
+    targets = list(targets)
+    found = set(members.target)
+    if not targets or found != set(targets):
+        raise ValueError(f"do1_test_fe.targets: {targets}; allowed: the records' targets {sorted(found)}, each once")
     first = members[members.target == targets[0]].depth_m.to_numpy()
     rows = []
     for target in targets:
         g = members[members.target == target]
         x = g.depth_m.to_numpy()
         if x.size < 2:
-            raise ValueError(f"DO1 test, target {target}: {x.size} realisation; allowed: at least 2 (an interval)")
+            raise ValueError(f"do1_test_fe.members: {x.size} realisation of target {target}; allowed: >= 2 (an interval)")
         lo, hi = t_interval(x, confidence)
         d, dlo, dhi = welch(first, x, confidence) if target != targets[0] else (math.nan,) * 3
         rows.append({"target": target, "realisations": x.size, "mean_m": x.mean(), "std_m": x.std(ddof=1),
                      "min_m": x.min(), "max_m": x.max(), "mean_low_m": lo, "mean_high_m": hi,
                      "at_rest": int((g.status == "rest").sum()), "perforated": int((g.status == "perforated").sum()),
+                     "moving_at_end": int((g.status == "end_time").sum()),
                      "measured_depth_m": measured, "excess": measured / x.mean() - 1,
                      "excess_low": measured / hi - 1, "excess_high": measured / lo - 1,
                      "effect_vs_first_m": d, "effect_low_m": dlo, "effect_high_m": dhi, "confidence": confidence})

@@ -20,6 +20,19 @@ def do1_shot(refs, ids):
     return tuple(refs[ids[q]].si for q in ("mass", "velocity", "depth"))
 
 
+def realisation_factor(member, step, what, step_key, least=1):
+    """The factor 1 + member x step on a shot's striking velocity that makes realisation ``member`` of its erosion
+    chaos, both checked (``what``, ``step_key``: the names the errors give; ``least``: the first member allowed,
+    1 where member 0 is the shot itself)."""
+    member, step = int(member), float(step)
+    if member < least:
+        raise ValueError(f"{what} {member}; allowed: >= {least}" + (" (member 0 is the shot itself)" if least == 1 else ""))
+    if not 0.0 < step <= 1e-6:
+        raise ValueError(f"{step_key} = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of the chaos, not a "
+                         "change of the shot)")
+    return 1.0 + member * step
+
+
 def calibration_row(cal: dict, value_key: str, source: str) -> dict:
     """One row of a shipped calibration: the fitted quantity, its value, its data and its residual, and the file it
     comes from (the levels of the command line read these committed rows, so that they run from a fresh clone)."""

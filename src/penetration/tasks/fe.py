@@ -27,7 +27,7 @@ from ..paper import reference
 from ..pipeline.dispatch import code_closure
 from ..pipeline.io import load_json, read_inference, task, write_csv, write_json
 from ..shots.fields import expected_depth
-from .common import calibration_row, do1_shot, scene_from_inputs
+from .common import calibration_row, do1_shot, realisation_factor, scene_from_inputs
 
 FE = ("fe",)
 
@@ -247,13 +247,8 @@ def realised_shot(inputs, outputs, params, what, step_key):
     """The shot of params at v (1 + member x velocity_step), member >= 1, written with the member, the factor, the
     striking and the final velocity; an erosion-free one that stops is recorded as fe_shot records it (a realisation
     without a depth), any other that stops fails. ``what``, ``step_key``: the names its errors give."""
-    member, step = int(params.member), float(params.velocity_step)
-    if member < 1:
-        raise ValueError(f"{what} {member}; allowed: >= 1 (member 0 is the shot itself)")
-    if not 0.0 < step <= 1e-6:
-        raise ValueError(f"{step_key} = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of the chaos, not a "
-                         "change of the shot)")
-    factor = 1.0 + member * step
+    member = int(params.member)
+    factor = realisation_factor(member, params.velocity_step, what, step_key)
     t0 = time.perf_counter()
     try:
         summary, r, spec, sc = scene_shot(inputs, params, factor)

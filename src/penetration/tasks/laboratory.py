@@ -15,7 +15,7 @@ from ..pipeline.io import load_json, read_inference, read_rows, task, write_csv,
 from ..shots.ladder import UserShot, fe_spec, run, user_shot
 from ..studies.fe_results import do1_test_tables
 from ..studies.laboratory import FITTED, Protocol, errors_summary, fit_factor, interpolated_depths
-from .common import do1_shot
+from .common import do1_shot, realisation_factor
 from .levels import context_from_files
 
 
@@ -219,49 +219,50 @@ DO1_TEST_TARGETS = ("semi_infinite", "block")
 def do1_test_fe_shot(inputs, outputs, params):
     """One realisation of DO1 as a test of the fe level (its failure strain fitted on the laboratory shots, the mesh
     of params.cfg's fe section), struck at v (1 + member x velocity_step): in the semi-infinite target of users'
-    shots (member 0 is do1_test's own fe shot) or in the experiment's block (params.block_depth deep, the 3.6 m x
-    3.6 m cross-section as a cylinder of equal area, free faces)."""
+    shots (member 0 is do1_test's own fe shot) or in the experiment's block (the fe section's block depth, the
+    3.6 m x 3.6 m cross-section as a cylinder of equal area, free faces)."""
     from ..fe.shot import progress_to, run_shot
-    from ..fe.spec import BLOCK_RADIUS, TargetSpec
+    from ..fe.spec import TargetSpec
 
-    member, step, target = int(params.member), float(params.velocity_step), params.target
-    if member < 0:
-        raise ValueError(f"do1_test_fe member {member}; allowed: >= 0")
-    if not 0.0 < step <= 1e-6:
-        raise ValueError(f"do1_test_fe.velocity_step = {step}; allowed: 0 < velocity_step <= 1e-6 (a realisation of "
-                         "the chaos, not a change of the shot)")
+    target = params.target
+    factor = realisation_factor(params.member, params.velocity_step, "do1_test_fe member", "do1_test_fe.velocity_step",
+                                least=0)
     if target not in DO1_TEST_TARGETS:
-        raise ValueError(f"do1_test_fe target {target!r}; allowed: one of {DO1_TEST_TARGETS}")
+        raise ValueError(f"do1_test_fe.targets: {target!r}; allowed: one of {DO1_TEST_TARGETS}")
     shot, ctx, depth = _do1(inputs, params, inputs.fe_laboratory)
     spec, _ = fe_spec(shot, ctx)
     if target == "block":
-        spec = dataclasses.replace(spec, target=TargetSpec("block", BLOCK_RADIUS, float(params.block_depth)))
-    spec = dataclasses.replace(spec, velocity=shot.velocity * (1.0 + member * step))
+        fe = params.cfg["fe"]
+        spec = dataclasses.replace(spec, target=TargetSpec.from_scene({"target": "block"}, fe["target_radius"],
+                                                                      fe["block_depth"]))
+    spec = dataclasses.replace(spec, velocity=shot.velocity * factor)
     with progress_to(lambda line: print(line, flush=True)):
         r = run_shot(spec)
-    write_json({"target": target, "member": member, "striking_velocity_ms": spec.velocity,
+    write_json({"target": target, "member": int(params.member), "striking_velocity_ms": spec.velocity,
                 "failure_strain": ctx.failure_strain, "failure_strain_source": ctx.failure_strain_source,
                 "element_size_m": spec.settings.element_size, "target_spec": dataclasses.asdict(spec.target),
                 "measured_depth_m": depth, "final_velocity_ms": float(r.histories["velocity"][-1]), **r.summary()},
                outputs.json)
-    print(f"DO1 at the fe level, {target} target, member {member}: {r.depth:.4g} m ({r.status})", flush=True)
+    print(f"DO1 at the fe level, {target} target, member {params.member}: {r.depth:.4g} m ({r.status})", flush=True)
 
 
 @task
 def do1_test_fe(inputs, outputs, params):
-    """DO1 as a test of the fe level over realisations in each target (do1_test_fe_shot's records): the members and,
-    per target, the depths' mean with its interval, the measured depth's excess over it and the block's effect."""
+    """DO1 as a test of the fe level over realisations in each target of params.targets, the first the reference
+    (do1_test_fe_shot's records): the members and, per target, the depths' mean with its interval, the measured
+    depth's excess over it and the target's effect against the first."""
     keep = ("target", "member", "striking_velocity_ms", "failure_strain", "element_size_m", "depth_m", "status",
             "time_to_rest_s", "final_velocity_ms", "wall_time_s", "energy_error_max", "measured_depth_m")
+    targets = list(params.targets)
     members = pd.DataFrame([{k: s[k] for k in keep} for s in map(load_json, inputs.shots)])
-    members = members.sort_values(["target", "member"], key=lambda c: c.map(DO1_TEST_TARGETS.index)
-                                  if c.name == "target" else c, kind="stable").reset_index(drop=True)
+    members = members.sort_values(["target", "member"], key=lambda c: c.map(targets.index) if c.name == "target" else c,
+                                  kind="stable").reset_index(drop=True)
     members["excess"] = members.measured_depth_m / members.depth_m - 1
     measured = members.measured_depth_m.unique()
     if measured.size != 1:
-        raise ValueError(f"DO1 test records with measured depths {list(measured)}; allowed: one")
+        raise ValueError(f"do1_test_fe records: measured_depth_m {list(measured)}; allowed: one value (DO1's)")
     write_csv(members, outputs.members)
-    t = do1_test_tables(members, float(measured[0]), float(params.confidence))
+    t = do1_test_tables(members, targets, float(measured[0]), float(params.confidence))
     write_csv(t, outputs.csv)
     for r in t.itertuples():
         print(f"DO1 at the fe level, {r.target}: mean {r.mean_m:.4g} m over {r.realisations} realisations "
