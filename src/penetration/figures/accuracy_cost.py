@@ -21,6 +21,29 @@ def _label(row):
     return {"S stated (Li & Chen)": "S stated", "S calibrated on DO1": "S on DO1"}.get(row.setting, "")
 
 
+def _fe_labels(ax, d, column, scale):
+    """The FE meshes' labels in a column to the right of their points, each joined to its point by a thin line and
+    spaced at least 7 % of the axis apart in the order of their values (the meshes' costs lie too close together on
+    the log axis to label beside each point)."""
+    fe = d[d.level == "fe"]
+    if fe.empty:
+        return
+    fe = fe.assign(y=scale * fe[column]).sort_values("y")
+    low, high = ax.get_ylim()
+    gap = 0.07 * (high - low)
+    x_text = 10 * fe.wall_time_per_shot_s.max()
+    placed = []
+    for y in fe.y:
+        placed.append(max(y, placed[-1] + gap) if placed else y)
+    shift = max(0.0, placed[-1] - (high - gap))   # keep the column inside the axis
+    for row, y_text in zip(fe.itertuples(), placed):
+        ax.annotate(_label(row), (row.wall_time_per_shot_s, row.y), xytext=(x_text, y_text - shift),
+                    textcoords="data", fontsize=7, va="center",
+                    arrowprops={"arrowstyle": "-", "lw": 0.5, "color": "0.6", "shrinkA": 0, "shrinkB": 3})
+    left, right = ax.get_xlim()
+    ax.set_xlim(left, max(right, 60 * x_text))
+
+
 def accuracy_cost_drawing(d, path, dpi):
     """One panel per prediction error; each level's settings against their wall time per shot (log scale); an
     analytic setting calibrated on DO1 hollow."""
@@ -37,15 +60,16 @@ def accuracy_cost_drawing(d, path, dpi):
                     ax.plot(row.wall_time_per_shot_s, scale * getattr(row, column), mk, color=c, ms=6,
                             mfc="white" if hollow else c, label=f"{level}" + (" (hollow: S calibrated on DO1)"
                                                                               if hollow else ""))
-            for k, row in enumerate(g.itertuples()):
-                text = _label(row)
-                if text:  # the FE meshes' labels alternate above and below their points
-                    ax.annotate(text, (row.wall_time_per_shot_s, scale * getattr(row, column)), fontsize=7,
-                                xytext=(4, 3 if level != "fe" or k % 2 == 0 else -11), textcoords="offset points")
+            if level != "fe":
+                for row in g.itertuples():
+                    if _label(row):
+                        ax.annotate(_label(row), (row.wall_time_per_shot_s, scale * getattr(row, column)), fontsize=7,
+                                    xytext=(4, 3), textcoords="offset points")
         ax.set(xscale="log", xlabel="wall time per shot (s)", ylabel=ylabel, title=title)
         ax.title.set_fontsize(9)
         top = ax.get_ylim()[1]
         ax.set_ylim(0, 1.15 * top if np.isfinite(top) else 1)
+        _fe_labels(ax, d.dropna(subset=[column, "wall_time_per_shot_s"]), column, scale)
     handles, labels = [], []
     for ax in axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
