@@ -205,14 +205,13 @@ def do1_test_fe(read) -> str:
     if not rows:
         return "Not yet run: `snakemake -c2 figures/fe/do1_test.csv`.\n"
     bottom = yaml.safe_load(read("workflow/config.yaml"))["fe"]["block_depth"]
-    name = {"semi_infinite": ("the semi-infinite target", " (users' shots)"),
-            "block": ("the experiment's block", f" ({bottom:g} m deep, free faces)")}
-    label = lambda t: "".join(name.get(t, (t, "")))
+    place = {"semi_infinite": "the semi-infinite target", "block": "the experiment's block"}
+    note = {"semi_infinite": " (users' shots)", "block": f" ({bottom:g} m deep, free faces)"}
     conf = f"{100 * float(rows[0]['confidence']):.0f} %"
     lines = [f"| target | realisations | mean depth (m) | range (m) | {conf} interval of the mean (m) | at rest / "
              f"perforated / moving at the end | DO1 deeper by |", "|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {label(r['target'])} | {r['realisations']} | {float(r['mean_m']):.3f} | "
+        lines.append(f"| {place.get(r['target'], r['target'])}{note.get(r['target'], '')} | {r['realisations']} | {float(r['mean_m']):.3f} | "
                      f"{float(r['min_m']):.3f}-{float(r['max_m']):.3f} | {float(r['mean_low_m']):.3f}-"
                      f"{float(r['mean_high_m']):.3f} | {r['at_rest']} / {r['perforated']} / {r['moving_at_end']} | "
                      f"{100 * float(r['excess']):+.1f} % ({100 * float(r['excess_low']):+.1f} to "
@@ -229,8 +228,8 @@ def do1_test_fe(read) -> str:
                     f"{v[0]:g} m/s times 1 + k x {step}, k = 0-{int(first['realisations']) - 1} "
                     "(`figures/fe/do1_test.csv`, `figures/fe/do1_test_members.csv`).")
     for r in rows[1:]:
-        tail.append(f"From {name.get(first['target'], (first['target'],))[0]} to "
-                    f"{name.get(r['target'], (r['target'],))[0]} the mean depth changes by "
+        tail.append(f"From {place.get(first['target'], first['target'])} to {place.get(r['target'], r['target'])} "
+                    "the mean depth changes by "
                     f"{float(r['effect_vs_first_m']):+.3f} m ({conf} Welch interval {float(r['effect_low_m']):+.3f} to "
                     f"{float(r['effect_high_m']):+.3f} m).")
     return "\n".join(lines) + "\n" + ("\n" + " ".join(tail) + "\n" if tail else "")

@@ -317,7 +317,21 @@ def rear_face_members(m: pd.DataFrame, chain) -> pd.DataFrame:
     chain = list(chain)
     if set(m.scene) != set(chain):
         raise ValueError(f"rear-face realisations of scenes {sorted(set(m.scene))}; allowed: the chain {chain}")
-    return m.assign(order=m.scene.map(chain.index)).sort_values(["order", "member"]).drop(columns="order")
+    return in_order(m, "scene", chain)
+
+
+def in_order(m: pd.DataFrame, column, order) -> pd.DataFrame:
+    """The realisations ``m`` sorted by ``column`` in the order of ``order`` (which holds every value of it), then by
+    member."""
+    order = list(order)
+    return m.assign(_order=m[column].map(order.index)).sort_values(["_order", "member"]).drop(columns="_order")
+
+
+def outcomes(status: pd.Series) -> dict:
+    """How many realisations came to rest, perforated the target or still moved at the run's end (``status``: each
+    one's run status)."""
+    return {"at_rest": int((status == "rest").sum()), "perforated": int((status == "perforated").sum()),
+            "moving_at_end": int((status == "end_time").sum())}
 
 
 def rear_face_targets(m: pd.DataFrame, chain, measured) -> pd.DataFrame:
@@ -334,8 +348,7 @@ def rear_face_targets(m: pd.DataFrame, chain, measured) -> pd.DataFrame:
                         "element_size_m": first.element_size_m, "realisations": x.size, "mean_m": x.mean(),
                         "std_m": x.std(ddof=1), "min_m": x.min(), "max_m": x.max(),
                         "least_distance_to_bottom_m": bottom - x.max() if not math.isnan(bottom) else math.nan,
-                        "at_rest": int((g.status == "rest").sum()), "perforated": int((g.status == "perforated").sum()),
-                        "moving_at_end": int((g.status == "end_time").sum()), "measured_depth_m": measured})
+                        **outcomes(g.status), "measured_depth_m": measured})
     return pd.DataFrame(targets)
 
 
@@ -401,9 +414,7 @@ def do1_test_tables(members: pd.DataFrame, targets, measured, confidence):
         d, dlo, dhi = welch(first, x, confidence) if target != targets[0] else (math.nan,) * 3
         rows.append({"target": target, "realisations": x.size, "mean_m": x.mean(), "std_m": x.std(ddof=1),
                      "min_m": x.min(), "max_m": x.max(), "mean_low_m": lo, "mean_high_m": hi,
-                     "at_rest": int((g.status == "rest").sum()), "perforated": int((g.status == "perforated").sum()),
-                     "moving_at_end": int((g.status == "end_time").sum()),
-                     "measured_depth_m": measured, "excess": measured / x.mean() - 1,
+                     **outcomes(g.status), "measured_depth_m": measured, "excess": measured / x.mean() - 1,
                      "excess_low": measured / hi - 1, "excess_high": measured / lo - 1,
                      "effect_vs_first_m": d, "effect_low_m": dlo, "effect_high_m": dhi, "confidence": confidence})
     return pd.DataFrame(rows)

@@ -13,7 +13,7 @@ from ..paper import reference
 from ..pipeline.config import machine_name
 from ..pipeline.io import load_json, read_inference, read_rows, task, write_csv, write_json
 from ..shots.ladder import UserShot, fe_spec, run, user_shot
-from ..studies.fe_results import do1_test_tables
+from ..studies.fe_results import do1_test_tables, in_order
 from ..studies.laboratory import FITTED, Protocol, errors_summary, fit_factor, interpolated_depths
 from .common import do1_shot, realisation_factor
 from .levels import context_from_files
@@ -255,8 +255,7 @@ def do1_test_fe(inputs, outputs, params):
             "time_to_rest_s", "final_velocity_ms", "wall_time_s", "energy_error_max", "measured_depth_m")
     targets = list(params.targets)
     members = pd.DataFrame([{k: s[k] for k in keep} for s in map(load_json, inputs.shots)])
-    members = members.sort_values(["target", "member"], key=lambda c: c.map(targets.index) if c.name == "target" else c,
-                                  kind="stable").reset_index(drop=True)
+    members = in_order(members, "target", targets).reset_index(drop=True)
     members["excess"] = members.measured_depth_m / members.depth_m - 1
     measured = members.measured_depth_m.unique()
     if measured.size != 1:
